@@ -1,0 +1,72 @@
+// Cross-target conformance: one batch of BSDF queries (material, view, light, three random
+// numbers) evaluated by the CPU build of the single source and by each GPU path, compared
+// output by output. See README "Conformance".
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "host/material_library.h"
+
+namespace openpbr::host {
+
+struct ConformanceOptions
+{
+    std::size_t query_count = 100000;  // e.g. 100000 queries spread evenly over the materials
+    std::uint64_t seed = 1;            // queries are a pure function of the seed
+    std::string kernel_directory;      // compiled kernels (.spv), e.g. build/kernels
+    std::vector<std::string> paths;    // GPU paths to run, e.g. {"slang-spirv"}; empty = all known
+    bool validation = false;           // Vulkan validation layers (on in tests)
+};
+
+// Per GPU path, the comparison against the CPU build.
+struct ConformancePathResult
+{
+    std::string name;            // e.g. "slang-spirv"
+    bool executed = false;
+    std::string note;            // why it did not execute, or the device name
+    double max_relative_error = 0.0;
+    double p999_relative_error = 0.0;
+    std::size_t nonfinite = 0;   // non-finite outputs on the GPU side
+    double lobe_mismatch_fraction = 0.0;
+    double first_dispatch_ms = 0.0;
+    double queries_per_second = 0.0;
+    std::size_t validation_messages = 0;
+    std::string worst_output;    // where the maximum error occurred, for diagnosis
+};
+
+struct ConformanceReport
+{
+    std::size_t query_count = 0;
+    std::size_t material_count = 0;
+    std::size_t cpu_nonfinite = 0;
+    double cpu_queries_per_second = 0.0;
+    std::vector<ConformancePathResult> paths;
+};
+
+// The GPU paths this build knows, in report order.
+std::vector<std::string> known_conformance_paths();
+
+// Materials used by conformance: the given library plus synthetic materials that switch on
+// every lobe at partial weight.
+std::vector<Material> conformance_materials(const std::vector<Material>& library);
+
+// Packs materials with the single-source field list (slang/openpbr_material_packing.h).
+std::vector<float> pack_materials(const std::vector<Material>& materials);
+
+// Deterministic query batch.
+std::vector<float> make_queries(std::size_t query_count, std::size_t material_count, std::uint64_t seed);
+
+// The CPU build of the conformance kernel; results as laid out in openpbr_conformance_kernel.h.
+std::vector<float> run_conformance_cpu(const std::vector<float>& queries, const std::vector<float>& materials);
+
+ConformanceReport run_conformance(const std::vector<Material>& materials, const ConformanceOptions& options);
+
+nlohmann::json to_json(const ConformanceReport& report);
+std::string to_text(const ConformanceReport& report);
+
+}  // namespace openpbr::host

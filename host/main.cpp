@@ -1,0 +1,100 @@
+// The `openpbr` command line: conformance and the other jobs of the host library.
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "host/conformance.h"
+#include "host/material_library.h"
+
+#ifndef OPENPBR_DEFAULT_MATERIALS_DIR
+#define OPENPBR_DEFAULT_MATERIALS_DIR "materials"
+#endif
+#ifndef OPENPBR_DEFAULT_KERNEL_DIR
+#define OPENPBR_DEFAULT_KERNEL_DIR "kernels"
+#endif
+
+namespace {
+
+void write_json_file(const std::string& path, const nlohmann::json& json)
+{
+    std::ofstream file(path);
+    if (!file)
+    {
+        throw std::runtime_error("cannot write '" + path + "'");
+    }
+    file << json.dump(2) << "\n";
+    if (!file)
+    {
+        throw std::runtime_error("error while writing '" + path + "'");
+    }
+}
+
+std::vector<openpbr::host::Material> load_materials(const std::vector<std::string>& files, const std::string& directory)
+{
+    if (files.empty())
+    {
+        return openpbr::host::load_material_directory(directory);
+    }
+    std::vector<openpbr::host::Material> materials;
+    for (const std::string& file : files)
+    {
+        const std::vector<openpbr::host::Material> loaded = openpbr::host::load_materialx_file(file);
+        materials.insert(materials.end(), loaded.begin(), loaded.end());
+    }
+    return materials;
+}
+
+}  // namespace
+
+int main(int argc, char** argv)
+{
+    CLI::App app{"openpbr: OpenPBR 1.1 BSDF tools (conformance, table generation, ...)"};
+    app.require_subcommand(1);
+
+    std::string materials_directory = OPENPBR_DEFAULT_MATERIALS_DIR;
+    std::vector<std::string> material_files;
+    std::string kernel_directory = OPENPBR_DEFAULT_KERNEL_DIR;
+    app.add_option("--materials-dir", materials_directory, "directory of .mtlx materials")->capture_default_str();
+    app.add_option("--kernel-dir", kernel_directory, "directory of compiled kernels")->capture_default_str();
+
+    CLI::App* conformance = app.add_subcommand("conformance", "compare every GPU path with the CPU build");
+    openpbr::host::ConformanceOptions conformance_options;
+    std::string conformance_json;
+    bool validation = false;
+    conformance->add_option("--queries", conformance_options.query_count, "number of queries")->capture_default_str()
+        ->check(CLI::Range(std::size_t(1), std::size_t(100000000)));
+    conformance->add_option("--seed", conformance_options.seed, "random seed")->capture_default_str();
+    conformance->add_option("--json", conformance_json, "write the report as JSON");
+    conformance->add_option("--paths", conformance_options.paths, "GPU paths to run (default: all)");
+    conformance->add_option("--materials", material_files, "material files (default: the materials directory)");
+    conformance->add_flag("--validation", validation, "enable Vulkan validation layers");
+
+    CLI11_PARSE(app, argc, argv);
+
+    try
+    {
+        if (conformance->parsed())
+        {
+            conformance_options.kernel_directory = kernel_directory;
+            conformance_options.validation = validation;
+            const auto materials =
+                openpbr::host::conformance_materials(load_materials(material_files, materials_directory));
+            const openpbr::host::ConformanceReport report = openpbr::host::run_conformance(materials, conformance_options);
+            std::cout << openpbr::host::to_text(report);
+            if (!conformance_json.empty())
+            {
+                write_json_file(conformance_json, openpbr::host::to_json(report));
+                std::cout << "wrote " << conformance_json << "\n";
+            }
+        }
+    }
+    catch (const std::exception& error)
+    {
+        std::cerr << "openpbr: error: " << error.what() << "\n";
+        return 1;
+    }
+    return 0;
+}

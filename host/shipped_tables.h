@@ -1,0 +1,17 @@
+// The energy-compensation tables as compiled into the C++ build (array mode), handed to GPU
+// paths as buffer contents: CPU and GPU then read the very same floats.
+#pragma once
+
+#include <iterator>
+#include <vector>
+
+#include "slang/openpbr.h"
+
+namespace openpbr::host {
+
+inline std::vector<float> shipped_lut()
+{
+    return std::vector<float>(std::begin(openpbr::openpbr_lut_data), std::end(openpbr::openpbr_lut_data));
+}
+
+}  // namespace openpbr::host

@@ -1,0 +1,24 @@
+// Slang backend: GLSL names map onto Slang's HLSL-flavoured core module.
+// Macros do not cross Slang module boundaries, so these spellings stay inside the
+// openpbr module; importers see ordinary float3/float2 signatures.
+#ifndef OPENPBR_INTEROP_SLANG_H
+#define OPENPBR_INTEROP_SLANG_H
+
+#define vec2 float2
+#define vec3 float3
+#define vec4 float4
+#define mix lerp
+#define fract frac
+#define inversesqrt rsqrt
+
+#define OPENPBR_NAMESPACE_BEGIN
+#define OPENPBR_NAMESPACE_END
+#define OPENPBR_FUNC
+#define OPENPBR_IN(type) in type
+#define OPENPBR_INOUT(type) inout type
+// Marks a parameter a lobe ignores (the shared lobe signature has it), e.g. the view of a
+// Lambertian pdf; C-family compilers would otherwise warn.
+#define OPENPBR_UNUSED(name)
+#define OPENPBR_OUT(type) out type
+
+#endif

@@ -1,0 +1,64 @@
+// What every lobe shares: the sample record and the lobe-type bits.
+// A lobe is a struct plus free functions with the same shape for every lobe:
+//   openpbr_<lobe>_init(...)                    -> struct, from material data and the view
+//   openpbr_<lobe>_eval(lobe, view, light)      -> BSDF x |cos(light)| (vec3), local frame
+//   openpbr_<lobe>_pdf(lobe, view, light)       -> solid-angle density of _sample
+//   openpbr_<lobe>_sample(lobe, view, u)        -> OpenPBR_LobeSample
+//   openpbr_<lobe>_albedo(lobe, view)           -> estimate of the directional albedo (vec3)
+// Directions are unit vectors in the lobe's local frame pointing away from the surface.
+#ifndef OPENPBR_LOBE_COMMON_H
+#define OPENPBR_LOBE_COMMON_H
+
+#include "../math/openpbr_math.h"
+
+// OpenPBR_BsdfLobeType: scattering-kind flags in the low byte, the lobe's identity above.
+// GLSL has no typedef, so the type is a macro everywhere.
+#define OpenPBR_BsdfLobeType uint
+#define OPENPBR_LOBE_TYPE_NONE 0u
+#define OPENPBR_LOBE_TYPE_REFLECTION 1u
+#define OPENPBR_LOBE_TYPE_TRANSMISSION 2u
+#define OPENPBR_LOBE_TYPE_DIFFUSE 4u
+#define OPENPBR_LOBE_TYPE_GLOSSY 8u
+#define OPENPBR_LOBE_TYPE_SPECULAR 16u  // a delta lobe: eval and pdf are 0 for it
+#define OPENPBR_LOBE_ID_SHIFT 8u
+#define OPENPBR_LOBE_ID_DIFFUSE 1u
+#define OPENPBR_LOBE_ID_SPECULAR_REFLECTION 2u
+#define OPENPBR_LOBE_ID_METAL 3u
+#define OPENPBR_LOBE_ID_SPECULAR_TRANSMISSION 4u
+#define OPENPBR_LOBE_ID_COAT 5u
+#define OPENPBR_LOBE_ID_FUZZ 6u
+#define OPENPBR_LOBE_ID_DIFFUSE_TRANSMISSION 7u
+#define OPENPBR_LOBE_ID_INTERFACE_FROM_INSIDE 8u
+#define OPENPBR_LOBE_ID_PASS_THROUGH 9u
+
+OPENPBR_NAMESPACE_BEGIN
+
+struct OpenPBR_LobeSample
+{
+    vec3 direction;       // sampled light direction, local frame
+    vec3 delta_weight;    // for delta lobes only: the lobe's value / its discrete probability 1
+    OpenPBR_BsdfLobeType lobe_type;  // OPENPBR_LOBE_TYPE_NONE when no sample was produced
+};
+
+OPENPBR_FUNC OpenPBR_LobeSample openpbr_make_lobe_sample(vec3 direction, OpenPBR_BsdfLobeType lobe_type)
+{
+    OpenPBR_LobeSample lobe_sample;
+    lobe_sample.direction = direction;
+    lobe_sample.delta_weight = vec3(0.0f);
+    lobe_sample.lobe_type = lobe_type;
+    return lobe_sample;
+}
+
+OPENPBR_FUNC OpenPBR_LobeSample openpbr_make_no_lobe_sample()
+{
+    return openpbr_make_lobe_sample(vec3(0.0f, 0.0f, 1.0f), OPENPBR_LOBE_TYPE_NONE);
+}
+
+OPENPBR_FUNC OpenPBR_BsdfLobeType openpbr_lobe_type(uint lobe_id, uint flags)
+{
+    return (lobe_id << OPENPBR_LOBE_ID_SHIFT) | flags;
+}
+
+OPENPBR_NAMESPACE_END
+
+#endif

@@ -1,0 +1,97 @@
+// GGX microfacet reflection (Walter et al. 2007) with visible-normal sampling; one struct for
+// the base specular reflection, the metal and the coat, which differ only in their Fresnel
+// factor (OpenPBR_Fresnel) and weight. Below OPENPBR_DELTA_ALPHA_THRESHOLD it is a mirror.
+//   f cos = weight * F(wo.h) D(h) G2(wo, wi) / (4 wo.z)
+//   pdf   = G1(wo) D(h) / (4 wo.z)          (VNDF density times the reflection Jacobian)
+//   sample weight of the lobe alone = weight * F G2 / G1(wo)
+// Multiple-scattering compensation (Turquin 2019) is folded into `weight` by the caller,
+// which depends only on the view, so eval stays a single-scattering evaluation.
+#ifndef OPENPBR_MICROFACET_REFLECTION_LOBE_H
+#define OPENPBR_MICROFACET_REFLECTION_LOBE_H
+
+#include "openpbr_lobe_common.h"
+#include "../math/openpbr_fresnel.h"
+#include "../math/openpbr_vndf.h"
+
+OPENPBR_NAMESPACE_BEGIN
+
+struct OpenPBR_MicrofacetReflectionLobe
+{
+    vec3 weight;           // layering weight times energy compensation
+    vec2 alpha;            // (alpha_t, alpha_b)
+    bool is_delta;         // mirror: eval and pdf are 0, sample is deterministic
+    float lambda_view;     // Smith Lambda of the view, shared by every eval
+    float g1_view;         // 1 / (1 + lambda_view)
+    float inverse_4_cos_view;  // 1 / (4 wo.z)
+    OpenPBR_Fresnel fresnel;
+    uint lobe_id;          // OPENPBR_LOBE_ID_SPECULAR_REFLECTION, _METAL or _COAT
+};
+
+OPENPBR_FUNC OpenPBR_MicrofacetReflectionLobe openpbr_microfacet_reflection_lobe_init(
+    vec3 weight, vec2 alpha, OPENPBR_IN(OpenPBR_Fresnel) fresnel, uint lobe_id, vec3 view)
+{
+    OpenPBR_MicrofacetReflectionLobe lobe;
+    lobe.weight = weight;
+    lobe.alpha = alpha;
+    lobe.is_delta = openpbr_ggx_is_delta(alpha);
+    lobe.lambda_view = openpbr_ggx_lambda(view, alpha);
+    lobe.g1_view = 1.0f / (1.0f + lobe.lambda_view);
+    lobe.inverse_4_cos_view = 0.25f / max(view.z, OPENPBR_FLOAT_MIN_NORMAL);
+    lobe.fresnel = fresnel;
+    lobe.lobe_id = lobe_id;
+    return lobe;
+}
+
+OPENPBR_FUNC vec3 openpbr_microfacet_reflection_lobe_eval(OPENPBR_IN(OpenPBR_MicrofacetReflectionLobe) lobe,
+                                                          vec3 view, vec3 light)
+{
+    if (lobe.is_delta || light.z <= 0.0f || view.z <= 0.0f)
+    {
+        return vec3(0.0f);
+    }
+    const vec3 h = openpbr_safe_normalize(view + light, vec3(0.0f, 0.0f, 1.0f));
+    const float d = openpbr_ggx_d(h, lobe.alpha);
+    const float g2 = openpbr_ggx_g2(lobe.lambda_view, openpbr_ggx_lambda(light, lobe.alpha));
+    const vec3 f = openpbr_fresnel_evaluate(lobe.fresnel, dot(view, h));
+    return lobe.weight * f * (d * g2 * lobe.inverse_4_cos_view);
+}
+
+OPENPBR_FUNC float openpbr_microfacet_reflection_lobe_pdf(OPENPBR_IN(OpenPBR_MicrofacetReflectionLobe) lobe,
+                                                          vec3 view, vec3 light)
+{
+    if (lobe.is_delta || light.z <= 0.0f || view.z <= 0.0f)
+    {
+        return 0.0f;
+    }
+    const vec3 h = openpbr_safe_normalize(view + light, vec3(0.0f, 0.0f, 1.0f));
+    return lobe.g1_view * openpbr_ggx_d(h, lobe.alpha) * lobe.inverse_4_cos_view;
+}
+
+OPENPBR_FUNC OpenPBR_LobeSample openpbr_microfacet_reflection_lobe_sample(
+    OPENPBR_IN(OpenPBR_MicrofacetReflectionLobe) lobe, vec3 view, vec2 u)
+{
+    if (view.z <= 0.0f)
+    {
+        return openpbr_make_no_lobe_sample();
+    }
+    if (lobe.is_delta)
+    {
+        OpenPBR_LobeSample mirror = openpbr_make_lobe_sample(
+            vec3(-view.x, -view.y, view.z),
+            openpbr_lobe_type(lobe.lobe_id, OPENPBR_LOBE_TYPE_REFLECTION | OPENPBR_LOBE_TYPE_SPECULAR));
+        mirror.delta_weight = lobe.weight * openpbr_fresnel_evaluate(lobe.fresnel, view.z);
+        return mirror;
+    }
+    const vec3 h = openpbr_sample_vndf_spherical_cap(view, lobe.alpha, u);
+    const vec3 light = reflect(-view, h);
+    if (light.z <= 0.0f)
+    {
+        return openpbr_make_no_lobe_sample();
+    }
+    return openpbr_make_lobe_sample(light,
+                                    openpbr_lobe_type(lobe.lobe_id, OPENPBR_LOBE_TYPE_REFLECTION | OPENPBR_LOBE_TYPE_GLOSSY));
+}
+
+OPENPBR_NAMESPACE_END
+
+#endif

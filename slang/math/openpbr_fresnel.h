@@ -1,0 +1,120 @@
+// Fresnel factors. Every function takes cosines on the incident side, in [0, 1].
+#ifndef OPENPBR_FRESNEL_H
+#define OPENPBR_FRESNEL_H
+
+#include "openpbr_math.h"
+
+OPENPBR_NAMESPACE_BEGIN
+
+// Unpolarized Fresnel reflectance of a smooth dielectric interface (Born & Wolf, ch. 1.5).
+// eta = n_transmitted / n_incident; eta < 1 allows total internal reflection (returns 1).
+OPENPBR_FUNC float openpbr_fresnel_dielectric(float cos_incident, float eta)
+{
+    const float cos_i = clamp(cos_incident, 0.0f, 1.0f);
+    const float sin2_t = (1.0f - cos_i * cos_i) / (eta * eta);
+    if (sin2_t >= 1.0f)
+    {
+        return 1.0f;
+    }
+    const float cos_t = sqrt(1.0f - sin2_t);
+    const float r_s = (cos_i - eta * cos_t) / (cos_i + eta * cos_t);
+    const float r_p = (eta * cos_i - cos_t) / (eta * cos_i + cos_t);
+    return 0.5f * (r_s * r_s + r_p * r_p);
+}
+
+// Cosine of the refracted direction for an incident cosine and eta (0 under total internal
+// reflection), so callers that need both F and cos_t compute the square root once.
+OPENPBR_FUNC float openpbr_refracted_cosine(float cos_incident, float eta)
+{
+    const float sin2_t = (1.0f - cos_incident * cos_incident) / (eta * eta);
+    return openpbr_safe_sqrt(1.0f - sin2_t);
+}
+
+// Normal-incidence reflectance of a dielectric interface: ((eta - 1) / (eta + 1))^2.
+OPENPBR_FUNC float openpbr_dielectric_f0(float eta) { return openpbr_square((eta - 1.0f) / (eta + 1.0f)); }
+
+OPENPBR_FUNC float openpbr_schlick_weight(float cos_theta)
+{
+    const float m = clamp(1.0f - cos_theta, 0.0f, 1.0f);
+    const float m2 = m * m;
+    return m2 * m2 * m;
+}
+
+// Schlick 1994: F0 + (1 - F0) (1 - cos)^5.
+OPENPBR_FUNC vec3 openpbr_fresnel_schlick(vec3 f0, float cos_theta)
+{
+    return f0 + (vec3(1.0f) - f0) * openpbr_schlick_weight(cos_theta);
+}
+
+// F82-tint metal Fresnel (OpenPBR 1.1 "Metal"; Hoffman 2019, "Fresnel Equations Considered
+// Harmful"; Kutz et al. 2021): Schlick minus a term a * mu * (1 - mu)^6 whose coefficient
+// makes the reflectance at mu_bar = 1/7 (about 82 degrees) equal tint * Schlick(mu_bar).
+// The prepared coefficient depends only on the material, so it is computed once.
+OPENPBR_FUNC vec3 openpbr_f82_coefficient(vec3 f0, vec3 tint)
+{
+    // mu_bar = 1/7: Schlick(mu_bar) = f0 + (1 - f0) (6/7)^5; mu_bar (1 - mu_bar)^6 = 6^6 / 7^7.
+    const float one_minus_mu_bar_5 = 0.46266436f;        // (6/7)^5
+    const float inverse_mu_bar_term = 823543.0f / 46656.0f; // 7^7 / 6^6
+    const vec3 schlick_at_mu_bar = f0 + (vec3(1.0f) - f0) * one_minus_mu_bar_5;
+    return schlick_at_mu_bar * (vec3(1.0f) - tint) * inverse_mu_bar_term;
+}
+
+OPENPBR_FUNC vec3 openpbr_fresnel_f82(vec3 f0, vec3 f82_coefficient, float cos_theta)
+{
+    const float mu = clamp(cos_theta, 0.0f, 1.0f);
+    const float m = 1.0f - mu;
+    const float m5 = openpbr_schlick_weight(mu);
+    const vec3 schlick = f0 + (vec3(1.0f) - f0) * m5;
+    // Clamped to [0, 1]: a tint above 1 must not produce energy gain or a negative value.
+    return openpbr_saturate(schlick - f82_coefficient * (mu * m5 * m));
+}
+
+// The Fresnel factor of one microfacet lobe, chosen at prepare time: a dielectric interface
+// (base specular, coat) or the F82-tint metal. Evaluating through one struct lets a single
+// microfacet lobe implementation serve the specular, metal and coat lobes.
+#define OPENPBR_FRESNEL_DIELECTRIC 0u
+#define OPENPBR_FRESNEL_F82 1u
+
+struct OpenPBR_Fresnel
+{
+    uint kind;               // OPENPBR_FRESNEL_DIELECTRIC or OPENPBR_FRESNEL_F82
+    float eta;               // dielectric: n_transmitted / n_incident, e.g. 1.5
+    vec3 f0;                 // F82: reflectance at normal incidence (base_weight * base_color)
+    vec3 f82_coefficient;    // F82: from openpbr_f82_coefficient
+    vec3 tint;               // multiplies the result, e.g. specular_color * specular_weight for metals
+};
+
+OPENPBR_FUNC OpenPBR_Fresnel openpbr_make_dielectric_fresnel(float eta, vec3 tint)
+{
+    OpenPBR_Fresnel fresnel;
+    fresnel.kind = OPENPBR_FRESNEL_DIELECTRIC;
+    fresnel.eta = eta;
+    fresnel.f0 = vec3(openpbr_dielectric_f0(eta));
+    fresnel.f82_coefficient = vec3(0.0f);
+    fresnel.tint = tint;
+    return fresnel;
+}
+
+OPENPBR_FUNC OpenPBR_Fresnel openpbr_make_f82_fresnel(vec3 f0, vec3 edge_tint, vec3 tint)
+{
+    OpenPBR_Fresnel fresnel;
+    fresnel.kind = OPENPBR_FRESNEL_F82;
+    fresnel.eta = 1.0f;
+    fresnel.f0 = f0;
+    fresnel.f82_coefficient = openpbr_f82_coefficient(f0, edge_tint);
+    fresnel.tint = tint;
+    return fresnel;
+}
+
+OPENPBR_FUNC vec3 openpbr_fresnel_evaluate(OPENPBR_IN(OpenPBR_Fresnel) fresnel, float cos_theta)
+{
+    if (fresnel.kind == OPENPBR_FRESNEL_F82)
+    {
+        return fresnel.tint * openpbr_fresnel_f82(fresnel.f0, fresnel.f82_coefficient, cos_theta);
+    }
+    return fresnel.tint * openpbr_fresnel_dielectric(cos_theta, fresnel.eta);
+}
+
+OPENPBR_NAMESPACE_END
+
+#endif
