@@ -68,12 +68,15 @@ const std::vector<GpuPath>& gpu_paths()
 {
     static const std::vector<GpuPath> paths = {
         {"slang-spirv", "conformance.slang.spv", "main"},
+        {"glsl-spirv", "conformance.glsl.spv", "main"},
+        {"slang-hlsl", "conformance.slang-hlsl.spv", "main"},
+        {"slang-glsl", "conformance.slang-glsl.spv", "main"},
     };
     return paths;
 }
 
-// Bindings shared by every conformance kernel: 0 tables, 1 queries, 2 materials, 3 results,
-// 4 parameters.
+// Bindings shared by every conformance kernel: 0 tables, 1 queries, 2 materials,
+// 3 parameters, 4 results.
 ConformancePathResult run_gpu_path(const GpuPath& path, VulkanContext& context, const std::vector<float>& queries,
                                    const std::vector<float>& materials, const std::vector<float>& cpu_results,
                                    const ConformanceOptions& options)
@@ -97,8 +100,8 @@ ConformancePathResult run_gpu_path(const GpuPath& path, VulkanContext& context, 
     const std::vector<BufferBinding> buffers = {{0, &lut_bytes, false},
                                                 {1, &query_bytes, false},
                                                 {2, &material_bytes, false},
-                                                {3, &result_bytes, true},
-                                                {4, &parameter_bytes, false}};
+                                                {3, &parameter_bytes, false},
+                                                {4, &result_bytes, true}};
     const std::uint32_t groups = std::uint32_t((query_count + 63) / 64);
     const DispatchTiming timing = run(pipeline, buffers, groups, 1, 1, 3);
     result.executed = true;

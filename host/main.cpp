@@ -7,10 +7,14 @@
 #include <CLI/CLI.hpp>
 
 #include "host/conformance.h"
+#include "host/lut_generator.h"
 #include "host/material_library.h"
 
 #ifndef OPENPBR_DEFAULT_MATERIALS_DIR
 #define OPENPBR_DEFAULT_MATERIALS_DIR "materials"
+#endif
+#ifndef OPENPBR_DEFAULT_GENERATED_DIR
+#define OPENPBR_DEFAULT_GENERATED_DIR "slang/generated"
 #endif
 #ifndef OPENPBR_DEFAULT_KERNEL_DIR
 #define OPENPBR_DEFAULT_KERNEL_DIR "kernels"
@@ -72,10 +76,38 @@ int main(int argc, char** argv)
     conformance->add_option("--materials", material_files, "material files (default: the materials directory)");
     conformance->add_flag("--validation", validation, "enable Vulkan validation layers");
 
+    CLI::App* lutgen = app.add_subcommand("lutgen", "generate the energy-compensation tables (Monte Carlo)");
+    openpbr::host::LutGeneratorOptions lut_options;
+    std::string lut_output_directory = OPENPBR_DEFAULT_GENERATED_DIR;
+    lutgen->add_option("--size-2d", lut_options.size_2d, "nodes per axis of the 2D table")->capture_default_str()
+        ->check(CLI::Range(2, 256));
+    lutgen->add_option("--size-3d", lut_options.size_3d, "nodes per axis of the 3D tables")->capture_default_str()
+        ->check(CLI::Range(2, 128));
+    lutgen->add_option("--samples", lut_options.samples, "Monte Carlo samples per table cell")->capture_default_str()
+        ->check(CLI::Range(1u, 1u << 30));
+    lutgen->add_option("--bits", lut_options.bits, "32 (float) or 16 (values rounded to half precision)")
+        ->capture_default_str()->check(CLI::IsMember({16, 32}));
+    lutgen->add_option("--seed", lut_options.seed, "0 = the shipped tables; others give independent replicas")
+        ->capture_default_str();
+    lutgen->add_option("-o,--output-dir", lut_output_directory,
+                       "where openpbr_lut_values.inc (array mode) and openpbr_lut.bin (buffer mode) go")
+        ->capture_default_str();
+    lutgen->add_flag("--progress", lut_options.progress_always, "print progress even when stderr is not a terminal");
+
     CLI11_PARSE(app, argc, argv);
 
     try
     {
+        if (lutgen->parsed())
+        {
+            const std::vector<float> table = openpbr::host::generate_lut(lut_options);
+            const std::string values_path = lut_output_directory + "/openpbr_lut_values.inc";
+            const std::string binary_path = lut_output_directory + "/openpbr_lut.bin";
+            openpbr::host::write_lut_values_inc(values_path, table, openpbr::host::describe(lut_options));
+            openpbr::host::write_lut_binary(binary_path, table);
+            std::cout << "wrote " << values_path << " and " << binary_path << " (" << table.size() << " values, "
+                      << openpbr::host::describe(lut_options) << ")\n";
+        }
         if (conformance->parsed())
         {
             conformance_options.kernel_directory = kernel_directory;

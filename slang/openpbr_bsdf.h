@@ -2,8 +2,13 @@
 //
 // Layering follows the specification's reduction to a mixture of lobes (spec "Reduction to a
 // mixture of lobes", docs/spec-notes.md 2.3) with albedo scaling:
-//   f_base   = lerp(f_dielectric, f_metal, M)
-//   f_dielectric = f^R_specular + (1 - E[f^R_specular](wo)) f_diffuse
+//   f_PBR        = lerp(f_pass_through, f_surface, geometry_opacity)
+//   f_surface    = F f_fuzz + (1 - F E_fuzz) f_coated
+//   f_coated     = C f_coat + lerp(1, T_coat (1 - E_coat), C) darkening f_base
+//   f_base       = lerp(f_dielectric, f_metal, M)
+//   f_dielectric = f^R_specular + (1 - E[f^R_specular]) lerp(lerp(f_diffuse, f_sss, S), f^T, T)
+// Inside a non-thin-walled object only the interface is seen (reflection + refraction with
+// the inverted IOR); thin-walled surfaces are mirrored so the view is always on top.
 // Every view-dependent factor (albedos, compensation, lobe weights and selection
 // probabilities) is computed once in openpbr_prepare; eval, sample and pdf then only do
 // per-light-direction work.
@@ -18,7 +23,10 @@
 
 #include "openpbr_input_contract.h"
 #include "openpbr_lut.h"
+#include "openpbr_volume.h"
+#include "lobes/openpbr_dielectric_lobe.h"
 #include "lobes/openpbr_diffuse_lobe.h"
+#include "lobes/openpbr_fuzz_lobe.h"
 #include "lobes/openpbr_microfacet_reflection_lobe.h"
 
 OPENPBR_NAMESPACE_BEGIN
@@ -37,39 +45,62 @@ struct OpenPBR_BsdfSample
     OpenPBR_BsdfLobeType lobe_type;   // OPENPBR_LOBE_TYPE_NONE when pdf == 0
 };
 
-// Per-lobe selection probabilities, in a fixed order (the order of sampling).
-#define OPENPBR_LOBE_SLOT_DIFFUSE 0
-#define OPENPBR_LOBE_SLOT_SPECULAR 1
-#define OPENPBR_LOBE_SLOT_METAL 2
-#define OPENPBR_LOBE_SLOT_PASS_THROUGH 3
-#define OPENPBR_LOBE_SLOT_COUNT 4
+// Wavelengths (nm) the three channels stand for when the caller passes none: the dominant
+// wavelengths of the Rec.709 primaries, e.g. for dispersion in an RGB renderer.
+#define OPENPBR_DEFAULT_RGB_WAVELENGTHS_NM vec3(612.0f, 549.0f, 465.0f)
 
 struct OpenPBR_PreparedBsdf
 {
-    OpenPBR_Basis basis;  // base shading frame, flipped to the view's side for two-sided surfaces
-    vec3 view;            // view direction in the base frame
+    OpenPBR_Basis basis;       // base shading frame, view side up (flipped for back faces)
+    OpenPBR_Basis coat_basis;  // coat frame, same side as the base frame
+    OpenPBR_Basis fuzz_basis;  // fuzz frame: base and coat normals blended by coat_weight
+    vec3 view;                 // view in the base frame (z >= 0)
+    vec3 coat_view;
+    vec3 fuzz_view;
     vec3 view_world;
-    float opacity;
-    OpenPBR_DiffuseLobe diffuse;
+    bool inside;               // view from inside a non-thin-walled object: interface only
+
+    OpenPBR_FuzzLobe fuzz;
+    OpenPBR_MicrofacetReflectionLobe coat;
     OpenPBR_MicrofacetReflectionLobe specular;
     OpenPBR_MicrofacetReflectionLobe metal;
-    vec3 pass_through_weight;  // (1 - geometry_opacity): a delta transmission straight through
-    // Selection probabilities (sum 1, or all 0 when nothing scatters); 0 for inactive lobes,
-    // so eval skips them without evaluating anything.
-    float probability_diffuse;
+    OpenPBR_DiffuseLobe diffuse;
+    OpenPBR_DiffuseLobe diffuse_transmission;          // thin-walled subsurface, mirrored below
+    OpenPBR_DielectricLobe transmission;               // entering refraction, or the interface from inside
+    OpenPBR_MicrofacetReflectionLobe thin_transmission; // thin-walled un-deflected transmission
+    vec3 pass_through_weight;                          // (1 - geometry_opacity), delta straight through
+
+    // Factor on every lobe under the coat for a light above: constant + absorbing * T(light),
+    // T(light) = coat_color^(1 / (2 mu_t(light))) (spec "Coat", view-dependent absorption).
+    vec3 under_coat_constant;
+    vec3 under_coat_absorbing;
+    vec3 coat_half_log_color;  // 0.5 ln(coat_color); 0 when the coat does not absorb
+    float coat_inverse_eta_squared;
+    vec3 under_coat_transmitted;  // the factor for lights below (the coat is crossed once)
+
+    // Selection probabilities (sum 1, or all 0 when nothing scatters). A lobe with
+    // probability 0 is never evaluated: a zero-weight lobe costs nothing in eval/pdf/sample.
+    float probability_fuzz;
+    float probability_coat;
     float probability_specular;
     float probability_metal;
+    float probability_diffuse;
+    float probability_diffuse_transmission;
+    float probability_transmission;
+    float probability_thin_transmission;
     float probability_pass_through;
-    vec3 emission;  // attenuated emission luminance leaving towards the view, nits
+
+    vec3 emission;                       // attenuated emission towards the view, nits
+    OpenPBR_HomogeneousVolume volume;    // interior medium (is_present false when none)
 };
 
-// Albedo-table roughness of an anisotropic lobe seen from `view`: the projected roughness
-// that Smith's Lambda uses, sqrt((ax^2 vx^2 + ay^2 vy^2) / (vx^2 + vy^2)).
+// Albedo-table roughness of an anisotropic lobe: the root mean square of (alpha_t, alpha_b),
+// which OpenPBR's anisotropy mapping keeps equal to r^2 (spec "Microfacet model"), so the
+// multiple-scattering loss is taken as that of the isotropic lobe of the same roughness.
 OPENPBR_FUNC float openpbr_projected_alpha(vec2 alpha, vec3 view)
 {
-    const float sin2 = view.x * view.x + view.y * view.y;
-    return sin2 > 1e-12f ? sqrt((openpbr_square(alpha.x * view.x) + openpbr_square(alpha.y * view.y)) / sin2)
-                         : sqrt(alpha.x * alpha.y);
+    OPENPBR_UNUSED(view);
+    return sqrt(0.5f * (alpha.x * alpha.x + alpha.y * alpha.y));
 }
 
 // Turquin 2019, "Practical multiple scattering compensation for microfacet models": scale the
@@ -90,116 +121,413 @@ OPENPBR_FUNC float openpbr_modulated_ior(float eta, float specular_weight)
     return (1.0f + epsilon) / (1.0f - epsilon);
 }
 
+// Spec "Coat" darkening: hemispherical average of the dielectric Fresnel factor, the spec's
+// fit for eta in [1, 3] and the reciprocity relation E_F(eta) = 1 - eta^2 (1 - E_F(1/eta)).
+OPENPBR_FUNC float openpbr_average_fresnel(float eta)
+{
+    const float e = max(eta, 1.0f / max(eta, 1e-3f));
+    const float average = log((10893.0f * e - 1438.2f) / (-774.4f * e * e + 10212.0f * e + 1.0f));
+    const float clamped = clamp(average, 0.0f, 1.0f);
+    return eta >= 1.0f ? clamped : 1.0f - eta * eta * (1.0f - clamped);
+}
+
+// Dispersion (spec "Translucent base"): Cauchy n(lambda) = A + B / lambda^2 through n_d at the
+// Fraunhofer d line with Abbe number V_d = abbe / scale (F 486.1 nm, d 587.6 nm, C 656.3 nm).
+OPENPBR_FUNC vec3 openpbr_dispersive_ior(float ior_d, float abbe_number, float dispersion_scale, vec3 wavelengths_nm)
+{
+    if (!(dispersion_scale > 0.0f))
+    {
+        return vec3(ior_d);
+    }
+    const float abbe = max(abbe_number / dispersion_scale, OPENPBR_ABBE_MIN);
+    const float inverse_f2 = 1.0f / (486.1f * 486.1f);
+    const float inverse_c2 = 1.0f / (656.3f * 656.3f);
+    const float b = (ior_d - 1.0f) / (abbe * (inverse_f2 - inverse_c2));
+    const float a = ior_d - b / (587.6f * 587.6f);
+    const vec3 lambda = clamp(wavelengths_nm, vec3(300.0f), vec3(1000.0f));
+    return clamp(vec3(a) + b / (lambda * lambda), vec3(OPENPBR_IOR_MIN), vec3(OPENPBR_IOR_MAX));
+}
+
+// Whether results depend on the wavelengths passed to prepare (dispersive transmission).
+OPENPBR_FUNC bool openpbr_needs_rgb_wavelengths(OPENPBR_IN(OpenPBR_ResolvedInputs) raw_inputs)
+{
+    const OpenPBR_ResolvedInputs inputs = openpbr_apply_input_contract(raw_inputs);
+    return inputs.transmission_dispersion_scale > 0.0f && inputs.transmission_weight > 0.0f &&
+           inputs.base_metalness < 1.0f && inputs.geometry_opacity > 0.0f && !inputs.geometry_thin_walled;
+}
+
+// Transmittance of one pass through the coat at cosine mu (outside), T = coat_color^(1/(2 mu_t)).
+OPENPBR_FUNC vec3 openpbr_coat_transmittance(vec3 half_log_color, float inverse_eta_squared, float mu)
+{
+    const float mu_t = openpbr_safe_sqrt(1.0f - (1.0f - mu * mu) * inverse_eta_squared);
+    return exp(half_log_color / max(mu_t, 1e-4f));
+}
+
+OPENPBR_FUNC OpenPBR_Basis openpbr_flip_basis(OPENPBR_IN(OpenPBR_Basis) basis)
+{
+    OpenPBR_Basis flipped;
+    flipped.tangent = basis.tangent;
+    flipped.bitangent = -basis.bitangent;
+    flipped.normal = -basis.normal;
+    return flipped;
+}
+
 OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare_lobes(OPENPBR_IN(OpenPBR_ResolvedInputs) raw_inputs,
-                                                        vec3 view_world)
+                                                        vec3 view_world, vec3 rgb_wavelengths_nm)
 {
     const OpenPBR_ResolvedInputs inputs = openpbr_apply_input_contract(raw_inputs);
     OpenPBR_PreparedBsdf bsdf;
     bsdf.view_world = openpbr_safe_normalize(view_world, inputs.geometry_basis.normal);
-    bsdf.basis = inputs.geometry_basis;
-    // Opaque surfaces are two-sided: a view from below sees the same surface mirrored.
-    if (dot(bsdf.view_world, bsdf.basis.normal) < 0.0f)
-    {
-        bsdf.basis.normal = -bsdf.basis.normal;
-        bsdf.basis.bitangent = -bsdf.basis.bitangent;
-    }
+    const float opacity = inputs.geometry_opacity;
+    const float metalness = inputs.base_metalness;
+    const float coat_weight = inputs.coat_weight;
+    const float fuzz_weight = inputs.fuzz_weight;
+    const bool thin_walled = inputs.geometry_thin_walled;
+    // Light enters the interior through the dielectric base (translucent or subsurface).
+    const float entering_weight = (1.0f - metalness) *
+                                  (inputs.transmission_weight + (1.0f - inputs.transmission_weight) * inputs.subsurface_weight);
+    const bool back_face = dot(bsdf.view_world, inputs.geometry_basis.normal) < 0.0f;
+    bsdf.inside = back_face && !thin_walled && entering_weight > 0.0f && opacity > 0.0f;
+    bsdf.basis = back_face ? openpbr_flip_basis(inputs.geometry_basis) : inputs.geometry_basis;
+    bsdf.coat_basis = back_face ? openpbr_flip_basis(inputs.geometry_coat_basis) : inputs.geometry_coat_basis;
+    bsdf.fuzz_basis = openpbr_make_basis(mix(bsdf.basis.normal, bsdf.coat_basis.normal, coat_weight));
     bsdf.view = openpbr_to_local(bsdf.basis, bsdf.view_world);
     bsdf.view.z = max(bsdf.view.z, 0.0f);
+    bsdf.coat_view = openpbr_to_local(bsdf.coat_basis, bsdf.view_world);
+    bsdf.coat_view.z = max(bsdf.coat_view.z, 0.0f);
+    bsdf.fuzz_view = openpbr_to_local(bsdf.fuzz_basis, bsdf.view_world);
+    bsdf.fuzz_view.z = max(bsdf.fuzz_view.z, 0.0f);
     const vec3 view = bsdf.view;
     const float mu = view.z;
-    bsdf.opacity = inputs.geometry_opacity;
+    bsdf.volume = openpbr_make_volume(inputs);
+    bsdf.emission = vec3(0.0f);
+    bsdf.pass_through_weight = vec3(1.0f - opacity);
 
-    const float metalness = inputs.base_metalness;
-    const vec2 alpha = openpbr_ggx_alpha(inputs.specular_roughness, inputs.specular_roughness_anisotropy);
+    // ---- IORs (spec "Base Substrate", "Coat" total internal reflection fix) ----
+    const float coat_ior = inputs.coat_ior;
+    const float base_ior = inputs.specular_ior;
+    const float base_over_coat = coat_ior > base_ior ? coat_ior / base_ior : base_ior / coat_ior;
+    const float eta_base = openpbr_modulated_ior(mix(base_ior, base_over_coat, coat_weight), inputs.specular_weight);
+    const vec3 eta_channels = openpbr_dispersive_ior(eta_base, inputs.transmission_dispersion_abbe_number,
+                                                     thin_walled ? 0.0f : inputs.transmission_dispersion_scale,
+                                                     rgb_wavelengths_nm);
+
+    // ---- Roughness: the coat roughens the base (spec "Coat", roughening) ----
+    const float coat_roughness = inputs.coat_roughness;
+    const float base_roughness =
+        mix(inputs.specular_roughness,
+            pow(min(1.0f, pow(inputs.specular_roughness, 4.0f) + 2.0f * pow(coat_roughness, 4.0f)), 0.25f), coat_weight);
+    const vec2 alpha = openpbr_ggx_alpha(base_roughness, inputs.specular_roughness_anisotropy);
     const float table_alpha = openpbr_projected_alpha(alpha, view);
-    const float opacity = inputs.geometry_opacity;
 
+    bsdf.probability_fuzz = 0.0f;
+    bsdf.probability_coat = 0.0f;
+    bsdf.probability_specular = 0.0f;
+    bsdf.probability_metal = 0.0f;
+    bsdf.probability_diffuse = 0.0f;
+    bsdf.probability_diffuse_transmission = 0.0f;
+    bsdf.probability_transmission = 0.0f;
+    bsdf.probability_thin_transmission = 0.0f;
+    bsdf.probability_pass_through = 0.0f;
+    bsdf.under_coat_constant = vec3(1.0f);
+    bsdf.under_coat_absorbing = vec3(0.0f);
+    bsdf.coat_half_log_color = vec3(0.0f);
+    bsdf.coat_inverse_eta_squared = 1.0f / (coat_ior * coat_ior);
+    bsdf.under_coat_transmitted = vec3(1.0f);
+    const vec3 zero = vec3(0.0f);
+    const OpenPBR_Fresnel no_fresnel = openpbr_make_constant_fresnel(vec3(1.0f));
+    bsdf.fuzz = openpbr_fuzz_lobe_init(zero, zero, inputs.fuzz_roughness, bsdf.fuzz_view);
+    bsdf.coat = openpbr_microfacet_reflection_lobe_init(zero, alpha, no_fresnel, OPENPBR_LOBE_ID_COAT, 1.0f, view);
+    bsdf.specular = bsdf.coat;
+    bsdf.metal = bsdf.coat;
+    bsdf.thin_transmission = bsdf.coat;
+    bsdf.diffuse = openpbr_diffuse_lobe_init(zero, zero, 0.0f, 1.0f, view);
+    bsdf.diffuse_transmission = bsdf.diffuse;
+    bsdf.transmission = openpbr_dielectric_lobe_init(zero, zero, alpha, eta_channels, false,
+                                                     OPENPBR_LOBE_ID_SPECULAR_TRANSMISSION, view);
+
+    if (bsdf.inside)
+    {
+        // Inside: the dielectric interface seen from the denser side (eta inverted), with
+        // Fresnel, total internal reflection and energy compensation 1 / E_RT. Light leaving
+        // crosses the coat once and the fuzz (approximated as view-independent factors).
+        const vec3 eta_inside = vec3(1.0f) / eta_channels;
+        const float compensation = 1.0f / max(openpbr_dielectric_interface_albedo(mu, table_alpha, eta_inside.y), 0.05f);
+        const vec3 exit_factor = mix(vec3(1.0f), sqrt(inputs.coat_color), coat_weight) *
+                                 (1.0f - fuzz_weight * openpbr_fuzz_albedo_white(1.0f, inputs.fuzz_roughness));
+        const float weight = opacity * compensation;
+        bsdf.transmission = openpbr_dielectric_lobe_init(vec3(weight), exit_factor * weight, alpha, eta_inside, true,
+                                                         OPENPBR_LOBE_ID_INTERFACE_FROM_INSIDE, view);
+        const float total = opacity + (1.0f - opacity);
+        bsdf.probability_transmission = opacity / total;
+        bsdf.probability_pass_through = (1.0f - opacity) / total;
+        return bsdf;
+    }
+
+    // ---- Fuzz (spec "Fuzz"): F f_fuzz + (1 - F E_fuzz) f_coated ----
+    const float fuzz_albedo_white = fuzz_weight > 0.0f ? openpbr_fuzz_albedo_white(bsdf.fuzz_view.z, inputs.fuzz_roughness) : 0.0f;
+    bsdf.fuzz = openpbr_fuzz_lobe_init(vec3(opacity * fuzz_weight), inputs.fuzz_color, inputs.fuzz_roughness, bsdf.fuzz_view);
+    const float under_fuzz = opacity * (1.0f - fuzz_weight * fuzz_albedo_white);
+
+    // ---- Coat (spec "Coat"): C f_coat + lerp(1, T_coat (1 - E_coat), C) darkening f_base ----
+    const vec2 coat_alpha = openpbr_ggx_alpha(coat_roughness, inputs.coat_roughness_anisotropy);
+    const float coat_mu = bsdf.coat_view.z;
+    const float coat_table_alpha = openpbr_projected_alpha(coat_alpha, bsdf.coat_view);
+    const OpenPBR_Fresnel coat_fresnel = openpbr_make_dielectric_fresnel(coat_ior, vec3(1.0f));
+    const vec3 coat_compensation =
+        openpbr_multiple_scattering_compensation(vec3(openpbr_dielectric_f0(coat_ior)), coat_mu, coat_table_alpha);
+    bsdf.coat = openpbr_microfacet_reflection_lobe_init(coat_compensation * (under_fuzz * coat_weight), coat_alpha,
+                                                        coat_fresnel, OPENPBR_LOBE_ID_COAT, 1.0f, bsdf.coat_view);
+    const float coat_single_albedo = bsdf.coat.is_delta ? openpbr_fresnel_dielectric(coat_mu, coat_ior)
+                                                        : openpbr_dielectric_reflection_albedo(coat_mu, coat_table_alpha, coat_ior);
+    const float coat_albedo = min(coat_single_albedo * coat_compensation.x, 1.0f);
+    const bool coat_absorbs = coat_weight > 0.0f && !(inputs.coat_color.x == 1.0f && inputs.coat_color.y == 1.0f &&
+                                                      inputs.coat_color.z == 1.0f);
+    bsdf.coat_half_log_color = coat_absorbs ? 0.5f * log(max(inputs.coat_color, vec3(1e-6f))) : vec3(0.0f);
+    const vec3 coat_view_transmittance =
+        openpbr_coat_transmittance(bsdf.coat_half_log_color, bsdf.coat_inverse_eta_squared, coat_mu);
+
+    // ---- Base substrate, with unit layering factor first (albedos feed darkening) ----
     // Dielectric specular reflection, tinted by specular_color (reflection from above only).
-    const float eta = openpbr_modulated_ior(inputs.specular_ior, inputs.specular_weight);
-    const OpenPBR_Fresnel dielectric_fresnel = openpbr_make_dielectric_fresnel(eta, inputs.specular_color);
+    const OpenPBR_Fresnel dielectric_fresnel = openpbr_make_dielectric_fresnel(eta_channels.y, inputs.specular_color);
     const vec3 specular_compensation =
-        openpbr_multiple_scattering_compensation(vec3(openpbr_dielectric_f0(eta)), mu, table_alpha);
-    const float dielectric_weight = opacity * (1.0f - metalness);
-    bsdf.specular = openpbr_microfacet_reflection_lobe_init(specular_compensation * dielectric_weight, alpha,
-                                                            dielectric_fresnel, OPENPBR_LOBE_ID_SPECULAR_REFLECTION, view);
-    // E[f^R](wo): tinted albedo including the compensation; a mirror has albedo F(mu).
-    const float reflection_albedo = bsdf.specular.is_delta ? openpbr_fresnel_dielectric(mu, eta)
-                                                           : openpbr_dielectric_reflection_albedo(mu, table_alpha, eta);
+        openpbr_multiple_scattering_compensation(vec3(openpbr_dielectric_f0(eta_channels.y)), mu, table_alpha);
+    const float dielectric_weight = 1.0f - metalness;
+    const bool specular_is_delta = openpbr_ggx_is_delta(alpha);
+    const float reflection_albedo = specular_is_delta ? openpbr_fresnel_dielectric(mu, eta_channels.y)
+                                                      : openpbr_dielectric_reflection_albedo(mu, table_alpha, eta_channels.y);
     const vec3 specular_albedo = openpbr_saturate(inputs.specular_color * specular_compensation * reflection_albedo);
+    const vec3 under_specular = vec3(1.0f) - specular_albedo;
 
-    // Diffuse under the specular layer: albedo scaling by (1 - E[f^R]).
-    const vec3 diffuse_weight = (vec3(1.0f) - specular_albedo) * (dielectric_weight * inputs.base_weight);
-    bsdf.diffuse = openpbr_diffuse_lobe_init(diffuse_weight, inputs.base_color, inputs.base_diffuse_roughness, 1.0f, view);
+    // What passes the specular interface splits into translucent, subsurface and diffuse.
+    const float translucent = inputs.transmission_weight;
+    const float subsurface = (1.0f - translucent) * inputs.subsurface_weight;
+    const float diffuse_fraction = (1.0f - translucent) * (1.0f - inputs.subsurface_weight);
+    vec3 diffuse_weight = under_specular * (dielectric_weight * diffuse_fraction * inputs.base_weight);
+    vec3 diffuse_color = inputs.base_color;
+    vec3 diffuse_transmission_weight = vec3(0.0f);
+    vec3 transmission_weight = vec3(0.0f);
+    vec3 thin_transmission_weight = vec3(0.0f);
+    if (thin_walled)
+    {
+        // Thin-walled (spec "Thin-walled case"): subsurface becomes a thin scattering sheet,
+        // reflection 1/2 S (1 - g), transmission 1/2 S (1 + g), both diffuse lobes; the
+        // translucent base becomes an un-deflected transmission tinted by transmission_color.
+        const float g = inputs.subsurface_scatter_anisotropy;
+        const vec3 sheet = under_specular * (dielectric_weight * subsurface);
+        diffuse_color = (diffuse_weight * inputs.base_color + sheet * (0.5f * (1.0f - g)) * inputs.subsurface_color) /
+                        max(diffuse_weight + sheet * (0.5f * (1.0f - g)), vec3(1e-12f));
+        diffuse_weight = diffuse_weight + sheet * (0.5f * (1.0f - g));
+        diffuse_transmission_weight = sheet * (0.5f * (1.0f + g));
+        thin_transmission_weight = under_specular * (dielectric_weight * translucent) * inputs.transmission_color;
+    }
+    else
+    {
+        // Refraction into the interior: translucent (tinted by transmission_color when there
+        // is no medium, spec "Translucent base") and subsurface (the medium does the rest).
+        const vec3 translucent_tint = inputs.transmission_depth > 0.0f ? vec3(1.0f) : inputs.transmission_color;
+        transmission_weight = under_specular * dielectric_weight * (translucent * translucent_tint + vec3(subsurface));
+    }
+    bsdf.specular = openpbr_microfacet_reflection_lobe_init(specular_compensation * dielectric_weight, alpha,
+                                                            dielectric_fresnel, OPENPBR_LOBE_ID_SPECULAR_REFLECTION, 1.0f, view);
+    bsdf.diffuse = openpbr_diffuse_lobe_init(diffuse_weight, diffuse_color, inputs.base_diffuse_roughness, 1.0f, view);
+    bsdf.diffuse_transmission = openpbr_diffuse_lobe_init(diffuse_transmission_weight, inputs.subsurface_color,
+                                                          inputs.base_diffuse_roughness, -1.0f, view);
+    const float transmission_compensation =
+        1.0f / max(openpbr_dielectric_transmission_albedo(mu, table_alpha, eta_channels.y), 0.05f);
+    bsdf.transmission = openpbr_dielectric_lobe_init(zero, transmission_weight * transmission_compensation, alpha,
+                                                     eta_channels, false, OPENPBR_LOBE_ID_SPECULAR_TRANSMISSION, view);
+    const float thin_compensation = 1.0f / max(openpbr_ggx_albedo(mu, table_alpha), 0.05f);
+    bsdf.thin_transmission = openpbr_microfacet_reflection_lobe_init(
+        thin_transmission_weight * thin_compensation, alpha, no_fresnel, OPENPBR_LOBE_ID_SPECULAR_TRANSMISSION, -1.0f, view);
 
     // Metal: F82-tint Fresnel, F0 = base_weight base_color, scaled by specular_weight.
     const vec3 metal_f0 = inputs.base_weight * inputs.base_color;
     const OpenPBR_Fresnel metal_fresnel =
         openpbr_make_f82_fresnel(metal_f0, inputs.specular_color, vec3(min(inputs.specular_weight, 1.0f)));
     const vec3 metal_compensation = openpbr_multiple_scattering_compensation(metal_f0, mu, table_alpha);
-    bsdf.metal = openpbr_microfacet_reflection_lobe_init(metal_compensation * (opacity * metalness), alpha,
-                                                         metal_fresnel, OPENPBR_LOBE_ID_METAL, view);
-    const vec3 metal_albedo = bsdf.metal.weight * openpbr_fresnel_evaluate(metal_fresnel, mu) *
-                              (bsdf.metal.is_delta ? 1.0f : openpbr_ggx_albedo(mu, table_alpha));
+    bsdf.metal = openpbr_microfacet_reflection_lobe_init(metal_compensation * metalness, alpha, metal_fresnel,
+                                                         OPENPBR_LOBE_ID_METAL, 1.0f, view);
+    const vec3 metal_albedo = openpbr_saturate(metal_compensation * openpbr_fresnel_evaluate(metal_fresnel, mu) *
+                                               (bsdf.metal.is_delta ? 1.0f : openpbr_ggx_albedo(mu, table_alpha))) *
+                              metalness;
 
-    bsdf.pass_through_weight = vec3(1.0f - opacity);
+    // Albedo estimates of the base lobes (unit layering factor).
+    const vec3 specular_estimate = specular_albedo * dielectric_weight;
+    const vec3 diffuse_estimate = bsdf.diffuse.albedo;
+    const vec3 diffuse_transmission_estimate = bsdf.diffuse_transmission.albedo;
+    const vec3 transmission_estimate = transmission_weight;
+    const vec3 thin_transmission_estimate = thin_transmission_weight;
 
-    // Lobe selection proportional to each lobe's estimated albedo (luminance).
-    const float diffuse_estimate = (inputs.base_weight > 0.0f) ? openpbr_luminance(bsdf.diffuse.albedo) : 0.0f;
-    const float specular_estimate = dielectric_weight > 0.0f ? openpbr_luminance(specular_albedo) * dielectric_weight : 0.0f;
-    const float metal_estimate = metalness > 0.0f ? openpbr_luminance(metal_albedo) : 0.0f;
-    const float pass_through_estimate = 1.0f - opacity;
-    const float total = diffuse_estimate + specular_estimate + metal_estimate + pass_through_estimate;
+    // Darkening (spec "Coat", darkening): lerp(1, Delta, C delta), Delta = (1 - K)/(1 - E_b K),
+    // K = lerp(K_s, K_r, r_b); E_b the reflected base albedo (at the view, not only at normal
+    // incidence: a documented approximation).
+    const vec3 base_albedo = openpbr_saturate(specular_estimate + diffuse_estimate + metal_albedo);
+    const float k_specular = openpbr_fresnel_dielectric(coat_mu, coat_ior);
+    const float k_rough = 1.0f - (1.0f - openpbr_average_fresnel(coat_ior)) * bsdf.coat_inverse_eta_squared;
+    const float specular_f0 = openpbr_dielectric_f0(eta_base);
+    const float base_surface_roughness =
+        mix(mix(1.0f, inputs.specular_roughness, min(specular_f0 * inputs.specular_weight, 1.0f)), inputs.specular_roughness, metalness);
+    const float k = mix(k_specular, k_rough, base_surface_roughness);
+    const vec3 delta = vec3(1.0f - k) / max(vec3(1.0f) - base_albedo * k, vec3(1e-6f));
+    const vec3 darkening = mix(vec3(1.0f), delta, coat_weight * inputs.coat_darkening);
+
+    // Layering factors on every base lobe: fuzz and opacity, coat absorption and darkening.
+    bsdf.under_coat_constant = darkening * (under_fuzz * (1.0f - coat_weight));
+    bsdf.under_coat_absorbing = darkening * (under_fuzz * coat_weight * (1.0f - coat_albedo)) * coat_view_transmittance;
+    bsdf.under_coat_transmitted = bsdf.under_coat_constant + bsdf.under_coat_absorbing;
+    // Estimate for selection: the light-side transmittance taken equal to the view side's.
+    const vec3 under_reflected = bsdf.under_coat_constant + bsdf.under_coat_absorbing * coat_view_transmittance;
+
+    // Selection probability proportional to each lobe's estimated albedo (luminance); the
+    // probabilities only steer sampling, so estimates need not be exact.
+    const float fuzz_p = openpbr_luminance(openpbr_fuzz_lobe_albedo(bsdf.fuzz, bsdf.fuzz_view));
+    const float coat_p = coat_weight > 0.0f ? under_fuzz * coat_weight * coat_albedo : 0.0f;
+    const float specular_p = dielectric_weight > 0.0f ? openpbr_luminance(specular_estimate * under_reflected) : 0.0f;
+    const float metal_p = metalness > 0.0f ? openpbr_luminance(metal_albedo * under_reflected) : 0.0f;
+    const float diffuse_p = openpbr_luminance(diffuse_estimate * under_reflected);
+    const float diffuse_transmission_p = openpbr_luminance(diffuse_transmission_estimate * bsdf.under_coat_transmitted);
+    const float transmission_p = openpbr_luminance(transmission_estimate * bsdf.under_coat_transmitted);
+    const float thin_transmission_p = openpbr_luminance(thin_transmission_estimate * bsdf.under_coat_transmitted);
+    const float pass_through_p = 1.0f - opacity;
+    const float total = fuzz_p + coat_p + specular_p + metal_p + diffuse_p + diffuse_transmission_p + transmission_p +
+                        thin_transmission_p + pass_through_p;
     const float inverse_total = total > 0.0f ? 1.0f / total : 0.0f;
-    bsdf.probability_diffuse = diffuse_estimate * inverse_total;
-    bsdf.probability_specular = specular_estimate * inverse_total;
-    bsdf.probability_metal = metal_estimate * inverse_total;
-    bsdf.probability_pass_through = pass_through_estimate * inverse_total;
-    bsdf.emission = vec3(0.0f);
+    bsdf.probability_fuzz = fuzz_p * inverse_total;
+    bsdf.probability_coat = coat_p * inverse_total;
+    bsdf.probability_specular = specular_p * inverse_total;
+    bsdf.probability_metal = metal_p * inverse_total;
+    bsdf.probability_diffuse = diffuse_p * inverse_total;
+    bsdf.probability_diffuse_transmission = diffuse_transmission_p * inverse_total;
+    bsdf.probability_transmission = transmission_p * inverse_total;
+    bsdf.probability_thin_transmission = thin_transmission_p * inverse_total;
+    bsdf.probability_pass_through = pass_through_p * inverse_total;
     return bsdf;
 }
 
-// Emission (spec "Emission"): emission_luminance x emission_color, in nits.
+// Emission (spec "Emission"): emission_luminance x emission_color in nits, under the coat:
+// lerp(1, T_coat, C) with T_coat one pass through the coat towards the view; zero when seen
+// from inside a non-thin-walled object (the emitting surface faces outwards).
 OPENPBR_FUNC vec3 openpbr_prepare_emission(OPENPBR_IN(OpenPBR_ResolvedInputs) raw_inputs, vec3 view_world)
 {
-    OPENPBR_UNUSED(view_world);
     const OpenPBR_ResolvedInputs inputs = openpbr_apply_input_contract(raw_inputs);
-    return inputs.emission_color * inputs.emission_luminance * inputs.geometry_opacity;
+    const vec3 view = openpbr_safe_normalize(view_world, inputs.geometry_basis.normal);
+    const float cos_base = dot(view, inputs.geometry_basis.normal);
+    if (cos_base < 0.0f && !inputs.geometry_thin_walled)
+    {
+        return vec3(0.0f);
+    }
+    const float coat_mu = min(abs(dot(view, inputs.geometry_coat_basis.normal)), 1.0f);
+    const vec3 half_log_color = 0.5f * log(max(inputs.coat_color, vec3(1e-6f)));
+    const vec3 coat_transmittance =
+        openpbr_coat_transmittance(half_log_color, 1.0f / (inputs.coat_ior * inputs.coat_ior), coat_mu);
+    const vec3 attenuation = mix(vec3(1.0f), coat_transmittance, inputs.coat_weight);
+    return inputs.emission_color * inputs.emission_luminance * attenuation * inputs.geometry_opacity;
 }
 
-OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare(OPENPBR_IN(OpenPBR_ResolvedInputs) inputs, vec3 view_world)
+OPENPBR_FUNC OpenPBR_HomogeneousVolume openpbr_prepare_volume(OPENPBR_IN(OpenPBR_ResolvedInputs) raw_inputs)
 {
-    OpenPBR_PreparedBsdf bsdf = openpbr_prepare_lobes(inputs, view_world);
+    return openpbr_make_volume(openpbr_apply_input_contract(raw_inputs));
+}
+
+OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare(OPENPBR_IN(OpenPBR_ResolvedInputs) inputs, vec3 view_world,
+                                                  vec3 rgb_wavelengths_nm)
+{
+    OpenPBR_PreparedBsdf bsdf = openpbr_prepare_lobes(inputs, view_world, rgb_wavelengths_nm);
     bsdf.emission = openpbr_prepare_emission(inputs, view_world);
     return bsdf;
 }
 
-// Sum of the continuous lobes at one light direction, split into diffuse and specular.
-OPENPBR_FUNC OpenPBR_DiffuseSpecular openpbr_eval_local(OPENPBR_IN(OpenPBR_PreparedBsdf) bsdf, vec3 light)
+OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare(OPENPBR_IN(OpenPBR_ResolvedInputs) inputs, vec3 view_world)
+{
+    return openpbr_prepare(inputs, view_world, OPENPBR_DEFAULT_RGB_WAVELENGTHS_NM);
+}
+
+// Sum of the continuous lobes at one world-space light direction, split diffuse / specular.
+OPENPBR_FUNC OpenPBR_DiffuseSpecular openpbr_eval(OPENPBR_IN(OpenPBR_PreparedBsdf) bsdf, vec3 light_world)
 {
     OpenPBR_DiffuseSpecular value;
     value.diffuse = vec3(0.0f);
     value.specular = vec3(0.0f);
-    if (bsdf.probability_diffuse > 0.0f)
+    const vec3 light = openpbr_to_local(bsdf.basis, light_world);
+    if (bsdf.inside)
     {
-        value.diffuse = openpbr_diffuse_lobe_eval(bsdf.diffuse, bsdf.view, light);
+        if (bsdf.probability_transmission > 0.0f)
+        {
+            value.specular = openpbr_dielectric_lobe_eval(bsdf.transmission, bsdf.view, light);
+        }
+        return value;
     }
-    if (bsdf.probability_specular > 0.0f)
+    if (bsdf.probability_fuzz > 0.0f)
     {
-        value.specular = value.specular + openpbr_microfacet_reflection_lobe_eval(bsdf.specular, bsdf.view, light);
+        value.specular = openpbr_fuzz_lobe_eval(bsdf.fuzz, bsdf.fuzz_view, openpbr_to_local(bsdf.fuzz_basis, light_world));
     }
-    if (bsdf.probability_metal > 0.0f)
+    const vec3 coat_light = openpbr_to_local(bsdf.coat_basis, light_world);
+    if (bsdf.probability_coat > 0.0f)
     {
-        value.specular = value.specular + openpbr_microfacet_reflection_lobe_eval(bsdf.metal, bsdf.view, light);
+        value.specular = value.specular + openpbr_microfacet_reflection_lobe_eval(bsdf.coat, bsdf.coat_view, coat_light);
     }
+    vec3 diffuse = vec3(0.0f);
+    vec3 specular = vec3(0.0f);
+    if (light.z >= 0.0f)
+    {
+        if (bsdf.probability_specular > 0.0f)
+        {
+            specular = specular + openpbr_microfacet_reflection_lobe_eval(bsdf.specular, bsdf.view, light);
+        }
+        if (bsdf.probability_metal > 0.0f)
+        {
+            specular = specular + openpbr_microfacet_reflection_lobe_eval(bsdf.metal, bsdf.view, light);
+        }
+        if (bsdf.probability_diffuse > 0.0f)
+        {
+            diffuse = openpbr_diffuse_lobe_eval(bsdf.diffuse, bsdf.view, light);
+        }
+        const vec3 coat_light_transmittance =
+            openpbr_coat_transmittance(bsdf.coat_half_log_color, bsdf.coat_inverse_eta_squared, max(coat_light.z, 0.0f));
+        const vec3 factor = bsdf.under_coat_constant + bsdf.under_coat_absorbing * coat_light_transmittance;
+        value.diffuse = diffuse * factor;
+        value.specular = value.specular + specular * factor;
+        return value;
+    }
+    if (bsdf.probability_transmission > 0.0f)
+    {
+        specular = openpbr_dielectric_lobe_eval(bsdf.transmission, bsdf.view, light);
+    }
+    if (bsdf.probability_thin_transmission > 0.0f)
+    {
+        specular = specular + openpbr_microfacet_reflection_lobe_eval(bsdf.thin_transmission, bsdf.view, light);
+    }
+    if (bsdf.probability_diffuse_transmission > 0.0f)
+    {
+        diffuse = openpbr_diffuse_lobe_eval(bsdf.diffuse_transmission, bsdf.view, light);
+    }
+    value.diffuse = diffuse * bsdf.under_coat_transmitted;
+    value.specular = value.specular + specular * bsdf.under_coat_transmitted;
     return value;
 }
 
-OPENPBR_FUNC float openpbr_pdf_local(OPENPBR_IN(OpenPBR_PreparedBsdf) bsdf, vec3 light)
+OPENPBR_FUNC float openpbr_pdf(OPENPBR_IN(OpenPBR_PreparedBsdf) bsdf, vec3 light_world)
 {
+    const vec3 light = openpbr_to_local(bsdf.basis, light_world);
     float pdf = 0.0f;
-    if (bsdf.probability_diffuse > 0.0f)
+    if (bsdf.probability_transmission > 0.0f)
     {
-        pdf += bsdf.probability_diffuse * openpbr_diffuse_lobe_pdf(bsdf.diffuse, bsdf.view, light);
+        pdf += bsdf.probability_transmission * openpbr_dielectric_lobe_pdf(bsdf.transmission, bsdf.view, light);
+    }
+    if (bsdf.inside)
+    {
+        return pdf;
+    }
+    if (bsdf.probability_fuzz > 0.0f)
+    {
+        pdf += bsdf.probability_fuzz *
+               openpbr_fuzz_lobe_pdf(bsdf.fuzz, bsdf.fuzz_view, openpbr_to_local(bsdf.fuzz_basis, light_world));
+    }
+    if (bsdf.probability_coat > 0.0f)
+    {
+        pdf += bsdf.probability_coat * openpbr_microfacet_reflection_lobe_pdf(bsdf.coat, bsdf.coat_view,
+                                                                              openpbr_to_local(bsdf.coat_basis, light_world));
     }
     if (bsdf.probability_specular > 0.0f)
     {
@@ -209,17 +537,20 @@ OPENPBR_FUNC float openpbr_pdf_local(OPENPBR_IN(OpenPBR_PreparedBsdf) bsdf, vec3
     {
         pdf += bsdf.probability_metal * openpbr_microfacet_reflection_lobe_pdf(bsdf.metal, bsdf.view, light);
     }
+    if (bsdf.probability_diffuse > 0.0f)
+    {
+        pdf += bsdf.probability_diffuse * openpbr_diffuse_lobe_pdf(bsdf.diffuse, bsdf.view, light);
+    }
+    if (bsdf.probability_diffuse_transmission > 0.0f)
+    {
+        pdf += bsdf.probability_diffuse_transmission * openpbr_diffuse_lobe_pdf(bsdf.diffuse_transmission, bsdf.view, light);
+    }
+    if (bsdf.probability_thin_transmission > 0.0f)
+    {
+        pdf += bsdf.probability_thin_transmission *
+               openpbr_microfacet_reflection_lobe_pdf(bsdf.thin_transmission, bsdf.view, light);
+    }
     return pdf;
-}
-
-OPENPBR_FUNC OpenPBR_DiffuseSpecular openpbr_eval(OPENPBR_IN(OpenPBR_PreparedBsdf) bsdf, vec3 light_world)
-{
-    return openpbr_eval_local(bsdf, openpbr_to_local(bsdf.basis, light_world));
-}
-
-OPENPBR_FUNC float openpbr_pdf(OPENPBR_IN(OpenPBR_PreparedBsdf) bsdf, vec3 light_world)
-{
-    return openpbr_pdf_local(bsdf, openpbr_to_local(bsdf.basis, light_world));
 }
 
 OPENPBR_FUNC OpenPBR_BsdfSample openpbr_make_no_sample()
@@ -233,20 +564,37 @@ OPENPBR_FUNC OpenPBR_BsdfSample openpbr_make_no_sample()
     return bsdf_sample;
 }
 
-// u: three uniform numbers in [0, 1); u.z selects the lobe, (u.x, u.y) drive the lobe's warp.
+// u: three uniform numbers in [0, 1); u.z selects the lobe (its remainder drives choices
+// inside the lobe), (u.x, u.y) drive the lobe's warp.
 OPENPBR_FUNC OpenPBR_BsdfSample openpbr_sample(OPENPBR_IN(OpenPBR_PreparedBsdf) bsdf, vec3 u)
 {
     const vec2 u_direction = vec2(u.x, u.y);
     float selector = u.z;
     float probability = 0.0f;
     OpenPBR_LobeSample lobe_sample = openpbr_make_no_lobe_sample();
-    bool is_diffuse_delta = false;
-    if (selector < bsdf.probability_diffuse)
+    OpenPBR_Basis frame = bsdf.basis;
+    vec3 delta_factor = bsdf.under_coat_transmitted;  // layering factor of a delta base lobe
+    if (selector < bsdf.probability_transmission)
     {
-        lobe_sample = openpbr_diffuse_lobe_sample(bsdf.diffuse, bsdf.view, u_direction);
-        probability = bsdf.probability_diffuse;
+        lobe_sample = openpbr_dielectric_lobe_sample(bsdf.transmission, bsdf.view, u_direction,
+                                                     selector / bsdf.probability_transmission);
+        probability = bsdf.probability_transmission;
+        delta_factor = bsdf.inside ? vec3(1.0f) : bsdf.under_coat_transmitted;
     }
-    else if ((selector -= bsdf.probability_diffuse) < bsdf.probability_specular)
+    else if ((selector -= bsdf.probability_transmission) < bsdf.probability_fuzz)
+    {
+        lobe_sample = openpbr_fuzz_lobe_sample(bsdf.fuzz, bsdf.fuzz_view, u_direction);
+        probability = bsdf.probability_fuzz;
+        frame = bsdf.fuzz_basis;
+    }
+    else if ((selector -= bsdf.probability_fuzz) < bsdf.probability_coat)
+    {
+        lobe_sample = openpbr_microfacet_reflection_lobe_sample(bsdf.coat, bsdf.coat_view, u_direction);
+        probability = bsdf.probability_coat;
+        frame = bsdf.coat_basis;
+        delta_factor = vec3(1.0f);
+    }
+    else if ((selector -= bsdf.probability_coat) < bsdf.probability_specular)
     {
         lobe_sample = openpbr_microfacet_reflection_lobe_sample(bsdf.specular, bsdf.view, u_direction);
         probability = bsdf.probability_specular;
@@ -256,36 +604,62 @@ OPENPBR_FUNC OpenPBR_BsdfSample openpbr_sample(OPENPBR_IN(OpenPBR_PreparedBsdf) 
         lobe_sample = openpbr_microfacet_reflection_lobe_sample(bsdf.metal, bsdf.view, u_direction);
         probability = bsdf.probability_metal;
     }
+    else if ((selector -= bsdf.probability_metal) < bsdf.probability_diffuse)
+    {
+        lobe_sample = openpbr_diffuse_lobe_sample(bsdf.diffuse, bsdf.view, u_direction);
+        probability = bsdf.probability_diffuse;
+    }
+    else if ((selector -= bsdf.probability_diffuse) < bsdf.probability_diffuse_transmission)
+    {
+        lobe_sample = openpbr_diffuse_lobe_sample(bsdf.diffuse_transmission, bsdf.view, u_direction);
+        probability = bsdf.probability_diffuse_transmission;
+    }
+    else if ((selector -= bsdf.probability_diffuse_transmission) < bsdf.probability_thin_transmission)
+    {
+        lobe_sample = openpbr_microfacet_reflection_lobe_sample(bsdf.thin_transmission, bsdf.view, u_direction);
+        probability = bsdf.probability_thin_transmission;
+    }
     else if (bsdf.probability_pass_through > 0.0f)
     {
         lobe_sample = openpbr_make_lobe_sample(-bsdf.view, openpbr_lobe_type(OPENPBR_LOBE_ID_PASS_THROUGH,
                                                                              OPENPBR_LOBE_TYPE_TRANSMISSION | OPENPBR_LOBE_TYPE_SPECULAR));
         lobe_sample.delta_weight = bsdf.pass_through_weight;
         probability = bsdf.probability_pass_through;
+        delta_factor = vec3(1.0f);
     }
-    if (lobe_sample.lobe_type == OPENPBR_LOBE_TYPE_NONE || probability <= 0.0f)
+    if (lobe_sample.lobe_type == OPENPBR_LOBE_TYPE_NONE || !(probability > 0.0f))
     {
         return openpbr_make_no_sample();
     }
     OpenPBR_BsdfSample bsdf_sample;
-    bsdf_sample.direction = openpbr_to_world(bsdf.basis, lobe_sample.direction);
+    bsdf_sample.direction = openpbr_to_world(frame, lobe_sample.direction);
     bsdf_sample.lobe_type = lobe_sample.lobe_type;
     if ((lobe_sample.lobe_type & OPENPBR_LOBE_TYPE_SPECULAR) != 0u)
     {
-        // Delta lobe: the estimator is value / P(selecting the lobe).
+        // Delta lobe: the estimator is value / P(selecting the lobe). A reflecting delta under
+        // the coat sees the coat's absorption along the mirrored direction.
+        vec3 factor = delta_factor;
+        if (!bsdf.inside && (lobe_sample.lobe_type & OPENPBR_LOBE_TYPE_REFLECTION) != 0u &&
+            (lobe_sample.lobe_type >> OPENPBR_LOBE_ID_SHIFT) != OPENPBR_LOBE_ID_COAT)
+        {
+            const float coat_mu = max(dot(bsdf_sample.direction, bsdf.coat_basis.normal), 0.0f);
+            factor = bsdf.under_coat_constant +
+                     bsdf.under_coat_absorbing *
+                         openpbr_coat_transmittance(bsdf.coat_half_log_color, bsdf.coat_inverse_eta_squared, coat_mu);
+        }
         bsdf_sample.pdf = probability;
-        bsdf_sample.weight.diffuse = is_diffuse_delta ? lobe_sample.delta_weight / probability : vec3(0.0f);
-        bsdf_sample.weight.specular = is_diffuse_delta ? vec3(0.0f) : lobe_sample.delta_weight / probability;
+        bsdf_sample.weight.diffuse = vec3(0.0f);
+        bsdf_sample.weight.specular = lobe_sample.delta_weight * factor / probability;
         return bsdf_sample;
     }
     // One-sample MIS over the continuous lobes: weight = f(wi) / sum_j P_j pdf_j(wi), so the
     // weight equals eval / pdf at the returned direction by construction.
-    const float pdf = openpbr_pdf_local(bsdf, lobe_sample.direction);
+    const float pdf = openpbr_pdf(bsdf, bsdf_sample.direction);
     if (!(pdf > 0.0f) || !(pdf <= OPENPBR_FLOAT_MAX))
     {
         return openpbr_make_no_sample();
     }
-    const OpenPBR_DiffuseSpecular value = openpbr_eval_local(bsdf, lobe_sample.direction);
+    const OpenPBR_DiffuseSpecular value = openpbr_eval(bsdf, bsdf_sample.direction);
     const float inverse_pdf = 1.0f / pdf;
     bsdf_sample.pdf = pdf;
     bsdf_sample.weight.diffuse = value.diffuse * inverse_pdf;

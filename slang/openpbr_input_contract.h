@@ -25,10 +25,10 @@
 // OPENPBR_CLAMP_HOOK(field_name, value_before, value_after) is called for every clamp that
 // changes a value, in the C++ build only, when the application defines it (e.g. to assert).
 #if defined(OPENPBR_CLAMP_HOOK) && (defined(OPENPBR_LANGUAGE_TARGET_CPP))
-#define OPENPBR_REPORT_CLAMP(name, before, after) \
-    if (!((before) == (after))) { OPENPBR_CLAMP_HOOK(name, before, after); }
+#define OPENPBR_REPORT_CLAMP(field, before, after) \
+    if (!((before) == (after))) { OPENPBR_CLAMP_HOOK(#field, before, after); }
 #else
-#define OPENPBR_REPORT_CLAMP(name, before, after)
+#define OPENPBR_REPORT_CLAMP(field, before, after)
 #endif
 
 OPENPBR_NAMESPACE_BEGIN
@@ -50,14 +50,14 @@ OPENPBR_FUNC vec3 openpbr_contract_color(vec3 value, float low, float high, vec3
     {                                                                                             \
         const float before = inputs.field;                                                        \
         result.field = openpbr_contract_float(before, low, high, defaults.field);                 \
-        OPENPBR_REPORT_CLAMP(#field, before, result.field)                                        \
+        OPENPBR_REPORT_CLAMP(field, before, result.field)                                        \
     }
 #define OPENPBR_CONTRACT_COLOR(field, low, high)                                                  \
     {                                                                                             \
         result.field = openpbr_contract_color(inputs.field, low, high, defaults.field);           \
-        OPENPBR_REPORT_CLAMP(#field, inputs.field.x, result.field.x)                              \
-        OPENPBR_REPORT_CLAMP(#field, inputs.field.y, result.field.y)                              \
-        OPENPBR_REPORT_CLAMP(#field, inputs.field.z, result.field.z)                              \
+        OPENPBR_REPORT_CLAMP(field, inputs.field.x, result.field.x)                              \
+        OPENPBR_REPORT_CLAMP(field, inputs.field.y, result.field.y)                              \
+        OPENPBR_REPORT_CLAMP(field, inputs.field.z, result.field.z)                              \
     }
 
 OPENPBR_FUNC OpenPBR_ResolvedInputs openpbr_apply_input_contract(OPENPBR_IN(OpenPBR_ResolvedInputs) inputs)

@@ -13,20 +13,29 @@
 //
 // Grids are node-centred: coordinate c in [0, 1] maps to c * (N - 1), so the table corners
 // hold the exact end values (mu = 0 and 1, roughness 0 and 1).
-// Axes: mu = cos(theta) of the view; r = sqrt(alpha) (perceptually even roughness steps);
-// x = 0.5 + (eta - 1) / (eta + 1), which maps eta in [1/3, 3] monotonically onto [0, 1]
-// (eta = 1 at 0.5) and gives reciprocal IORs mirrored positions.
+// Axes, each chosen so the tabulated albedos are close to linear along it (linear
+// interpolation error was the largest error of the first, uniform layout):
+//   c_mu  = sqrt(mu), mu = cos(theta) of the view: nodes crowd towards grazing, where
+//           Fresnel and shadowing change fastest;
+//   c_r   = r = sqrt(alpha) (perceptually even roughness steps);
+//   c_eta = 0.5 + sgn(y) sqrt(|y| / 2), y = (eta - 1) / (eta + 1): maps eta in [1/3, 3]
+//           monotonically onto [0, 1], reciprocal IORs mirrored, with nodes crowding towards
+//           eta = 1: near grazing the Fresnel factor depends on (eta^2 - 1) / mu^2, so it
+//           changes fastest there (bases under a coat of similar IOR live there).
 #ifndef OPENPBR_LUT_H
 #define OPENPBR_LUT_H
 
 #include "math/openpbr_math.h"
 
-// Table sizes (the generator reads the same defines). Example: 32 x 32 for the 2D table.
+// Table sizes (the generator reads the same defines), e.g. 32 x 32 for the 2D table. The 3D
+// size is odd so a node lies exactly at eta = 1 (c_eta = 0.5): the albedos are not smooth
+// across eta = 1 (total internal reflection starts below it), and interpolation must not mix
+// the two sides.
 #ifndef OPENPBR_LUT_2D_SIZE
 #define OPENPBR_LUT_2D_SIZE 32
 #endif
 #ifndef OPENPBR_LUT_3D_SIZE
-#define OPENPBR_LUT_3D_SIZE 16
+#define OPENPBR_LUT_3D_SIZE 25
 #endif
 
 // Table ids and offsets into the flat array.
@@ -117,10 +126,16 @@ inline const float* openpbr_lut_data = nullptr;
 
 OPENPBR_NAMESPACE_BEGIN
 
-OPENPBR_FUNC float openpbr_lut_eta_coordinate(float eta) { return clamp(0.5f + (eta - 1.0f) / (eta + 1.0f), 0.0f, 1.0f); }
+OPENPBR_FUNC float openpbr_lut_eta_coordinate(float eta)
+{
+    const float y = (eta - 1.0f) / (eta + 1.0f);
+    return clamp(0.5f + (y < 0.0f ? -1.0f : 1.0f) * sqrt(0.5f * abs(y)), 0.0f, 1.0f);
+}
 OPENPBR_FUNC float openpbr_lut_roughness_coordinate(float alpha) { return clamp(sqrt(alpha), 0.0f, 1.0f); }
+OPENPBR_FUNC float openpbr_lut_mu_coordinate(float mu) { return sqrt(clamp(mu, 0.0f, 1.0f)); }
 
-// Bilinear look-up; `mu` is the fastest-varying axis: index = offset + r_index * N + mu_index.
+// Bilinear look-up at axis coordinates in [0, 1]; mu is the fastest-varying axis:
+// index = offset + r_index * N + mu_index.
 OPENPBR_FUNC float openpbr_lut_2d(int offset, float mu, float r)
 {
     const float scale = float(OPENPBR_LUT_2D_SIZE - 1);
@@ -169,27 +184,28 @@ OPENPBR_FUNC float openpbr_lut_3d(int offset, float mu, float r, float x)
 // Directional albedo of GGX reflection with F = 1 (single scattering).
 OPENPBR_FUNC float openpbr_ggx_albedo(float mu, float alpha)
 {
-    return openpbr_lut_2d(OPENPBR_LUT_GGX_ALBEDO_OFFSET, mu, openpbr_lut_roughness_coordinate(alpha));
+    return openpbr_lut_2d(OPENPBR_LUT_GGX_ALBEDO_OFFSET, openpbr_lut_mu_coordinate(mu),
+                          openpbr_lut_roughness_coordinate(alpha));
 }
 
 // Directional albedo of GGX reflection off a dielectric of relative IOR eta (single scattering).
 OPENPBR_FUNC float openpbr_dielectric_reflection_albedo(float mu, float alpha, float eta)
 {
-    return openpbr_lut_3d(OPENPBR_LUT_DIELECTRIC_REFLECTION_OFFSET, mu, openpbr_lut_roughness_coordinate(alpha),
+    return openpbr_lut_3d(OPENPBR_LUT_DIELECTRIC_REFLECTION_OFFSET, openpbr_lut_mu_coordinate(mu), openpbr_lut_roughness_coordinate(alpha),
                           openpbr_lut_eta_coordinate(eta));
 }
 
 // Directional albedo of the GGX BTDF without its Fresnel factor (single scattering).
 OPENPBR_FUNC float openpbr_dielectric_transmission_albedo(float mu, float alpha, float eta)
 {
-    return openpbr_lut_3d(OPENPBR_LUT_DIELECTRIC_TRANSMISSION_OFFSET, mu, openpbr_lut_roughness_coordinate(alpha),
+    return openpbr_lut_3d(OPENPBR_LUT_DIELECTRIC_TRANSMISSION_OFFSET, openpbr_lut_mu_coordinate(mu), openpbr_lut_roughness_coordinate(alpha),
                           openpbr_lut_eta_coordinate(eta));
 }
 
 // Directional albedo of reflection plus transmission of a rough dielectric interface.
 OPENPBR_FUNC float openpbr_dielectric_interface_albedo(float mu, float alpha, float eta)
 {
-    return openpbr_lut_3d(OPENPBR_LUT_DIELECTRIC_INTERFACE_OFFSET, mu, openpbr_lut_roughness_coordinate(alpha),
+    return openpbr_lut_3d(OPENPBR_LUT_DIELECTRIC_INTERFACE_OFFSET, openpbr_lut_mu_coordinate(mu), openpbr_lut_roughness_coordinate(alpha),
                           openpbr_lut_eta_coordinate(eta));
 }
 

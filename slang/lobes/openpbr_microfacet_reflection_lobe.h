@@ -1,6 +1,9 @@
 // GGX microfacet reflection (Walter et al. 2007) with visible-normal sampling; one struct for
 // the base specular reflection, the metal and the coat, which differ only in their Fresnel
 // factor (OpenPBR_Fresnel) and weight. Below OPENPBR_DELTA_ALPHA_THRESHOLD it is a mirror.
+// Mirrored below the surface (hemisphere_sign -1) it is the thin-walled specular
+// transmission: an un-deflected transmission lobe with the reflection's shape (spec
+// "Thin-walled case": the sheet does not refract; the roughened lobe follows Kulla 2017).
 //   f cos = weight * F(wo.h) D(h) G2(wo, wi) / (4 wo.z)
 //   pdf   = G1(wo) D(h) / (4 wo.z)          (VNDF density times the reflection Jacobian)
 //   sample weight of the lobe alone = weight * F G2 / G1(wo)
@@ -24,11 +27,12 @@ struct OpenPBR_MicrofacetReflectionLobe
     float g1_view;         // 1 / (1 + lambda_view)
     float inverse_4_cos_view;  // 1 / (4 wo.z)
     OpenPBR_Fresnel fresnel;
-    uint lobe_id;          // OPENPBR_LOBE_ID_SPECULAR_REFLECTION, _METAL or _COAT
+    uint lobe_id;          // OPENPBR_LOBE_ID_SPECULAR_REFLECTION, _METAL, _COAT or _SPECULAR_TRANSMISSION
+    float hemisphere_sign; // +1 reflection, -1 mirrored into the lower hemisphere
 };
 
 OPENPBR_FUNC OpenPBR_MicrofacetReflectionLobe openpbr_microfacet_reflection_lobe_init(
-    vec3 weight, vec2 alpha, OPENPBR_IN(OpenPBR_Fresnel) fresnel, uint lobe_id, vec3 view)
+    vec3 weight, vec2 alpha, OPENPBR_IN(OpenPBR_Fresnel) fresnel, uint lobe_id, float hemisphere_sign, vec3 view)
 {
     OpenPBR_MicrofacetReflectionLobe lobe;
     lobe.weight = weight;
@@ -39,12 +43,14 @@ OPENPBR_FUNC OpenPBR_MicrofacetReflectionLobe openpbr_microfacet_reflection_lobe
     lobe.inverse_4_cos_view = 0.25f / max(view.z, OPENPBR_FLOAT_MIN_NORMAL);
     lobe.fresnel = fresnel;
     lobe.lobe_id = lobe_id;
+    lobe.hemisphere_sign = hemisphere_sign;
     return lobe;
 }
 
 OPENPBR_FUNC vec3 openpbr_microfacet_reflection_lobe_eval(OPENPBR_IN(OpenPBR_MicrofacetReflectionLobe) lobe,
-                                                          vec3 view, vec3 light)
+                                                          vec3 view, vec3 light_direction)
 {
+    const vec3 light = vec3(light_direction.x, light_direction.y, light_direction.z * lobe.hemisphere_sign);
     if (lobe.is_delta || light.z <= 0.0f || view.z <= 0.0f)
     {
         return vec3(0.0f);
@@ -57,8 +63,9 @@ OPENPBR_FUNC vec3 openpbr_microfacet_reflection_lobe_eval(OPENPBR_IN(OpenPBR_Mic
 }
 
 OPENPBR_FUNC float openpbr_microfacet_reflection_lobe_pdf(OPENPBR_IN(OpenPBR_MicrofacetReflectionLobe) lobe,
-                                                          vec3 view, vec3 light)
+                                                          vec3 view, vec3 light_direction)
 {
+    const vec3 light = vec3(light_direction.x, light_direction.y, light_direction.z * lobe.hemisphere_sign);
     if (lobe.is_delta || light.z <= 0.0f || view.z <= 0.0f)
     {
         return 0.0f;
@@ -74,11 +81,12 @@ OPENPBR_FUNC OpenPBR_LobeSample openpbr_microfacet_reflection_lobe_sample(
     {
         return openpbr_make_no_lobe_sample();
     }
+    const uint side = lobe.hemisphere_sign > 0.0f ? OPENPBR_LOBE_TYPE_REFLECTION : OPENPBR_LOBE_TYPE_TRANSMISSION;
     if (lobe.is_delta)
     {
         OpenPBR_LobeSample mirror = openpbr_make_lobe_sample(
-            vec3(-view.x, -view.y, view.z),
-            openpbr_lobe_type(lobe.lobe_id, OPENPBR_LOBE_TYPE_REFLECTION | OPENPBR_LOBE_TYPE_SPECULAR));
+            vec3(-view.x, -view.y, view.z * lobe.hemisphere_sign),
+            openpbr_lobe_type(lobe.lobe_id, side | OPENPBR_LOBE_TYPE_SPECULAR));
         mirror.delta_weight = lobe.weight * openpbr_fresnel_evaluate(lobe.fresnel, view.z);
         return mirror;
     }
@@ -88,8 +96,8 @@ OPENPBR_FUNC OpenPBR_LobeSample openpbr_microfacet_reflection_lobe_sample(
     {
         return openpbr_make_no_lobe_sample();
     }
-    return openpbr_make_lobe_sample(light,
-                                    openpbr_lobe_type(lobe.lobe_id, OPENPBR_LOBE_TYPE_REFLECTION | OPENPBR_LOBE_TYPE_GLOSSY));
+    return openpbr_make_lobe_sample(vec3(light.x, light.y, light.z * lobe.hemisphere_sign),
+                                    openpbr_lobe_type(lobe.lobe_id, side | OPENPBR_LOBE_TYPE_GLOSSY));
 }
 
 OPENPBR_NAMESPACE_END

@@ -11,12 +11,14 @@ OPENPBR_NAMESPACE_BEGIN
 OPENPBR_FUNC float openpbr_fresnel_dielectric(float cos_incident, float eta)
 {
     const float cos_i = clamp(cos_incident, 0.0f, 1.0f);
-    const float sin2_t = (1.0f - cos_i * cos_i) / (eta * eta);
-    if (sin2_t >= 1.0f)
+    // cos_t^2 = 1 - (1 - cos_i^2) / eta^2, written without the cancellation of 1 - sin^2 so
+    // eta near 1 at grazing angles does not report a spurious total internal reflection.
+    const float cos2_t = (cos_i * cos_i + eta * eta - 1.0f) / (eta * eta);
+    if (cos2_t <= 0.0f)
     {
         return 1.0f;
     }
-    const float cos_t = sqrt(1.0f - sin2_t);
+    const float cos_t = sqrt(cos2_t);
     const float r_s = (cos_i - eta * cos_t) / (cos_i + eta * cos_t);
     const float r_p = (eta * cos_i - cos_t) / (eta * cos_i + cos_t);
     return 0.5f * (r_s * r_s + r_p * r_p);
@@ -26,8 +28,7 @@ OPENPBR_FUNC float openpbr_fresnel_dielectric(float cos_incident, float eta)
 // reflection), so callers that need both F and cos_t compute the square root once.
 OPENPBR_FUNC float openpbr_refracted_cosine(float cos_incident, float eta)
 {
-    const float sin2_t = (1.0f - cos_incident * cos_incident) / (eta * eta);
-    return openpbr_safe_sqrt(1.0f - sin2_t);
+    return openpbr_safe_sqrt((cos_incident * cos_incident + eta * eta - 1.0f) / (eta * eta));
 }
 
 // Normal-incidence reflectance of a dielectric interface: ((eta - 1) / (eta + 1))^2.
@@ -74,10 +75,11 @@ OPENPBR_FUNC vec3 openpbr_fresnel_f82(vec3 f0, vec3 f82_coefficient, float cos_t
 // microfacet lobe implementation serve the specular, metal and coat lobes.
 #define OPENPBR_FRESNEL_DIELECTRIC 0u
 #define OPENPBR_FRESNEL_F82 1u
+#define OPENPBR_FRESNEL_NONE 2u  // F = 1 (times tint): thin-walled transmission, table generation
 
 struct OpenPBR_Fresnel
 {
-    uint kind;               // OPENPBR_FRESNEL_DIELECTRIC or OPENPBR_FRESNEL_F82
+    uint kind;               // OPENPBR_FRESNEL_DIELECTRIC, _F82 or _NONE
     float eta;               // dielectric: n_transmitted / n_incident, e.g. 1.5
     vec3 f0;                 // F82: reflectance at normal incidence (base_weight * base_color)
     vec3 f82_coefficient;    // F82: from openpbr_f82_coefficient
@@ -106,8 +108,19 @@ OPENPBR_FUNC OpenPBR_Fresnel openpbr_make_f82_fresnel(vec3 f0, vec3 edge_tint, v
     return fresnel;
 }
 
+OPENPBR_FUNC OpenPBR_Fresnel openpbr_make_constant_fresnel(vec3 tint)
+{
+    OpenPBR_Fresnel fresnel = openpbr_make_dielectric_fresnel(1.0f, tint);
+    fresnel.kind = OPENPBR_FRESNEL_NONE;
+    return fresnel;
+}
+
 OPENPBR_FUNC vec3 openpbr_fresnel_evaluate(OPENPBR_IN(OpenPBR_Fresnel) fresnel, float cos_theta)
 {
+    if (fresnel.kind == OPENPBR_FRESNEL_NONE)
+    {
+        return fresnel.tint;
+    }
     if (fresnel.kind == OPENPBR_FRESNEL_F82)
     {
         return fresnel.tint * openpbr_fresnel_f82(fresnel.f0, fresnel.f82_coefficient, cos_theta);

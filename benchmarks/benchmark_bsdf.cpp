@@ -1,0 +1,145 @@
+// CPU cost of the BSDF API per bundled material: ns per prepare, eval, sample and pdf
+// (Google Benchmark; numbers go to docs/performance.md). Queries cycle through a fixed set of
+// directions so the branch pattern is that of a real batch, not one repeated input.
+#include <benchmark/benchmark.h>
+
+#include <random>
+#include <string>
+#include <vector>
+
+#include "host/material_library.h"
+#include "slang/openpbr.h"
+
+namespace {
+
+using namespace openpbr;
+
+constexpr int direction_count = 256;
+
+struct Directions
+{
+    std::vector<vec3> views;
+    std::vector<vec3> lights;
+    std::vector<vec3> randoms;
+};
+
+const Directions& directions()
+{
+    static const Directions cached = [] {
+        Directions d;
+        std::mt19937 generator(7);
+        std::uniform_real_distribution<float> uniform(0.0f, 1.0f);
+        for (int i = 0; i < direction_count; ++i)
+        {
+            const vec3 u(uniform(generator), uniform(generator), uniform(generator));
+            d.views.push_back(openpbr_sample_cosine_hemisphere(vec2(u.x, u.y)));
+            d.lights.push_back(openpbr_sample_cosine_hemisphere(vec2(uniform(generator), uniform(generator))));
+            d.randoms.push_back(vec3(uniform(generator), uniform(generator), std::min(u.z, 0.999f)));
+        }
+        return d;
+    }();
+    return cached;
+}
+
+void benchmark_prepare(benchmark::State& state, const OpenPBR_ResolvedInputs& inputs)
+{
+    const Directions& d = directions();
+    int i = 0;
+    for (auto _ : state)
+    {
+        OpenPBR_PreparedBsdf bsdf = openpbr_prepare(inputs, d.views[i]);
+        benchmark::DoNotOptimize(bsdf);
+        i = (i + 1) & (direction_count - 1);
+    }
+}
+
+std::vector<OpenPBR_PreparedBsdf> prepared_set(const OpenPBR_ResolvedInputs& inputs)
+{
+    std::vector<OpenPBR_PreparedBsdf> prepared;
+    for (const vec3& view : directions().views)
+    {
+        prepared.push_back(openpbr_prepare(inputs, view));
+    }
+    return prepared;
+}
+
+void benchmark_eval(benchmark::State& state, const OpenPBR_ResolvedInputs& inputs)
+{
+    const std::vector<OpenPBR_PreparedBsdf> prepared = prepared_set(inputs);
+    const Directions& d = directions();
+    int i = 0;
+    for (auto _ : state)
+    {
+        OpenPBR_DiffuseSpecular value = openpbr_eval(prepared[i], d.lights[i]);
+        benchmark::DoNotOptimize(value);
+        i = (i + 1) & (direction_count - 1);
+    }
+}
+
+void benchmark_sample(benchmark::State& state, const OpenPBR_ResolvedInputs& inputs)
+{
+    const std::vector<OpenPBR_PreparedBsdf> prepared = prepared_set(inputs);
+    const Directions& d = directions();
+    int i = 0;
+    for (auto _ : state)
+    {
+        OpenPBR_BsdfSample bsdf_sample = openpbr_sample(prepared[i], d.randoms[i]);
+        benchmark::DoNotOptimize(bsdf_sample);
+        i = (i + 1) & (direction_count - 1);
+    }
+}
+
+void benchmark_pdf(benchmark::State& state, const OpenPBR_ResolvedInputs& inputs)
+{
+    const std::vector<OpenPBR_PreparedBsdf> prepared = prepared_set(inputs);
+    const Directions& d = directions();
+    int i = 0;
+    for (auto _ : state)
+    {
+        float pdf = openpbr_pdf(prepared[i], d.lights[i]);
+        benchmark::DoNotOptimize(pdf);
+        i = (i + 1) & (direction_count - 1);
+    }
+}
+
+// A material with every lobe at partial weight: the most expensive configuration.
+OpenPBR_ResolvedInputs every_lobe_material()
+{
+    OpenPBR_ResolvedInputs inputs = openpbr_make_default_resolved_inputs();
+    inputs.base_metalness = 0.3f;
+    inputs.base_diffuse_roughness = 0.5f;
+    inputs.specular_roughness_anisotropy = 0.5f;
+    inputs.transmission_weight = 0.3f;
+    inputs.subsurface_weight = 0.3f;
+    inputs.fuzz_weight = 0.3f;
+    inputs.coat_weight = 0.5f;
+    inputs.coat_roughness = 0.2f;
+    inputs.coat_color = vec3(0.9f, 0.8f, 0.7f);
+    inputs.thin_film_weight = 0.5f;
+    inputs.emission_luminance = 1.0f;
+    return inputs;
+}
+
+void register_material(const std::string& name, const OpenPBR_ResolvedInputs& inputs)
+{
+    benchmark::RegisterBenchmark(("prepare/" + name).c_str(), benchmark_prepare, inputs);
+    benchmark::RegisterBenchmark(("eval/" + name).c_str(), benchmark_eval, inputs);
+    benchmark::RegisterBenchmark(("sample/" + name).c_str(), benchmark_sample, inputs);
+    benchmark::RegisterBenchmark(("pdf/" + name).c_str(), benchmark_pdf, inputs);
+}
+
+}  // namespace
+
+int main(int argc, char** argv)
+{
+    register_material("Default", openpbr_make_default_resolved_inputs());
+    register_material("EveryLobe", every_lobe_material());
+    for (const openpbr::host::Material& material : openpbr::host::load_material_directory(OPENPBR_MATERIALS_DIR))
+    {
+        register_material(material.name, material.inputs);
+    }
+    benchmark::Initialize(&argc, argv);
+    benchmark::RunSpecifiedBenchmarks();
+    benchmark::Shutdown();
+    return 0;
+}

@@ -1,0 +1,192 @@
+// Rough dielectric interface lobe (Walter et al. 2007, "Microfacet Models for Refraction
+// through Rough Surfaces") with visible-normal sampling, in two forms:
+//  - transmission only, without the Fresnel factor (OpenPBR 1.1 "Reduction to a mixture of
+//    lobes": under albedo scaling the transmission Fresnel factor may be omitted, the
+//    (1 - E[f^R]) weight already removes the reflected energy). Used for light entering the
+//    translucent base and the subsurface medium.
+//  - reflection + transmission with the Fresnel factor, chosen per microfacet with
+//    probability F (the classical rough dielectric). Used from inside the object.
+// eta = n_below / n_above in the lobe's frame, where the view is above (view.z > 0); it may be
+// per channel (dispersion): each channel is then evaluated with its own IOR and sampling is a
+// one-sample MIS over the three channel IORs, so an RGB renderer stays unbiased.
+// The BTDF is written for throughput (no 1/eta^2 radiance factor): the factor cancels on
+// entering and leaving a closed object, and a renderer with cameras or lights inside a medium
+// applies it itself. With it, a white dielectric conserves energy (spec "White furnace").
+//   f_T |cos_i| = eta^2 |i.h| |o.h| (1 - F) D G2 / (|o.n| (eta i.h + o.h)^2)
+//   pdf_T       = P_T G1(o) |o.h| D / |o.n| * eta^2 |i.h| / (eta i.h + o.h)^2
+#ifndef OPENPBR_DIELECTRIC_LOBE_H
+#define OPENPBR_DIELECTRIC_LOBE_H
+
+#include "openpbr_lobe_common.h"
+#include "../math/openpbr_fresnel.h"
+#include "../math/openpbr_vndf.h"
+
+OPENPBR_NAMESPACE_BEGIN
+
+struct OpenPBR_DielectricLobe
+{
+    vec3 reflection_weight;    // multiplies F D G2 / (4 o.n); 0 for the transmission-only form
+    vec3 transmission_weight;  // multiplies the BTDF (including compensation and tint)
+    vec2 alpha;
+    bool is_delta;
+    bool with_fresnel;         // false: transmission-only form, the (1 - F) factor is 1
+    bool dispersive;           // eta differs per channel
+    vec3 eta;                  // n_below / n_above, per channel
+    float lambda_view;
+    float g1_view;
+    uint lobe_id;
+};
+
+OPENPBR_FUNC OpenPBR_DielectricLobe openpbr_dielectric_lobe_init(vec3 reflection_weight, vec3 transmission_weight,
+                                                                 vec2 alpha, vec3 eta, bool with_fresnel,
+                                                                 uint lobe_id, vec3 view)
+{
+    OpenPBR_DielectricLobe lobe;
+    lobe.reflection_weight = with_fresnel ? reflection_weight : vec3(0.0f);
+    lobe.transmission_weight = transmission_weight;
+    lobe.alpha = alpha;
+    lobe.is_delta = openpbr_ggx_is_delta(alpha);
+    lobe.with_fresnel = with_fresnel;
+    lobe.dispersive = !(eta.x == eta.y && eta.y == eta.z);
+    lobe.eta = eta;
+    lobe.lambda_view = openpbr_ggx_lambda(view, alpha);
+    lobe.g1_view = 1.0f / (1.0f + lobe.lambda_view);
+    lobe.lobe_id = lobe_id;
+    return lobe;
+}
+
+// Probability of choosing transmission at a microfacet with Fresnel reflectance f.
+OPENPBR_FUNC float openpbr_dielectric_transmission_probability(OPENPBR_IN(OpenPBR_DielectricLobe) lobe, float f)
+{
+    return lobe.with_fresnel ? 1.0f - f : 1.0f;
+}
+
+// Value and density of one channel's IOR at a light direction; returns (value, pdf) with the
+// value excluding the weight, so channels can share the code.
+OPENPBR_FUNC vec2 openpbr_dielectric_lobe_channel(OPENPBR_IN(OpenPBR_DielectricLobe) lobe, vec3 view, vec3 light,
+                                                  float eta)
+{
+    if (lobe.is_delta || view.z <= 0.0f || light.z == 0.0f)
+    {
+        return vec2(0.0f);
+    }
+    const float lambda_light = openpbr_ggx_lambda(light, lobe.alpha);
+    const float g2 = openpbr_ggx_g2(lobe.lambda_view, lambda_light);
+    if (light.z > 0.0f)
+    {
+        if (!lobe.with_fresnel)
+        {
+            return vec2(0.0f);
+        }
+        const vec3 h = openpbr_safe_normalize(view + light, vec3(0.0f, 0.0f, 1.0f));
+        const float d = openpbr_ggx_d(h, lobe.alpha);
+        const float f = openpbr_fresnel_dielectric(dot(view, h), eta);
+        const float inverse_4_cos_view = 0.25f / view.z;
+        return vec2(f * d * g2 * inverse_4_cos_view, f * lobe.g1_view * d * inverse_4_cos_view);
+    }
+    // Transmission: generalized half vector, oriented to the upper hemisphere.
+    vec3 h = view + light * eta;
+    h = openpbr_safe_normalize(h.z < 0.0f ? -h : h, vec3(0.0f, 0.0f, 1.0f));
+    const float o_dot_h = dot(view, h);
+    const float i_dot_h = dot(light, h);
+    // Refraction geometry: the view above and the light below the microfacet.
+    if (o_dot_h <= 0.0f || i_dot_h >= 0.0f)
+    {
+        return vec2(0.0f);
+    }
+    const float d = openpbr_ggx_d(h, lobe.alpha);
+    const float f = lobe.with_fresnel ? openpbr_fresnel_dielectric(o_dot_h, eta) : 0.0f;
+    const float denominator = openpbr_square(eta * i_dot_h + o_dot_h);
+    if (!(denominator > 0.0f))
+    {
+        return vec2(0.0f);
+    }
+    const float jacobian = eta * eta * abs(i_dot_h) / denominator;
+    const float visible = o_dot_h * d / view.z;
+    const float value = (1.0f - f) * g2 * visible * jacobian;
+    const float pdf = openpbr_dielectric_transmission_probability(lobe, f) * lobe.g1_view * visible * jacobian;
+    return vec2(value, pdf);
+}
+
+OPENPBR_FUNC vec3 openpbr_dielectric_lobe_eval(OPENPBR_IN(OpenPBR_DielectricLobe) lobe, vec3 view, vec3 light)
+{
+    const vec3 weight = light.z > 0.0f ? lobe.reflection_weight : lobe.transmission_weight;
+    if (!lobe.dispersive)
+    {
+        return weight * openpbr_dielectric_lobe_channel(lobe, view, light, lobe.eta.x).x;
+    }
+    return weight * vec3(openpbr_dielectric_lobe_channel(lobe, view, light, lobe.eta.x).x,
+                         openpbr_dielectric_lobe_channel(lobe, view, light, lobe.eta.y).x,
+                         openpbr_dielectric_lobe_channel(lobe, view, light, lobe.eta.z).x);
+}
+
+OPENPBR_FUNC float openpbr_dielectric_lobe_pdf(OPENPBR_IN(OpenPBR_DielectricLobe) lobe, vec3 view, vec3 light)
+{
+    if (!lobe.dispersive)
+    {
+        return openpbr_dielectric_lobe_channel(lobe, view, light, lobe.eta.x).y;
+    }
+    // One-sample MIS over the channel IORs, each chosen with probability 1/3.
+    return (openpbr_dielectric_lobe_channel(lobe, view, light, lobe.eta.x).y +
+            openpbr_dielectric_lobe_channel(lobe, view, light, lobe.eta.y).y +
+            openpbr_dielectric_lobe_channel(lobe, view, light, lobe.eta.z).y) *
+           (1.0f / 3.0f);
+}
+
+// u.x, u.y: the microfacet; selector in [0, 1): channel (when dispersive) and then R or T.
+OPENPBR_FUNC OpenPBR_LobeSample openpbr_dielectric_lobe_sample(OPENPBR_IN(OpenPBR_DielectricLobe) lobe, vec3 view,
+                                                               vec2 u, float selector)
+{
+    if (view.z <= 0.0f)
+    {
+        return openpbr_make_no_lobe_sample();
+    }
+    float choice = clamp(selector, 0.0f, 0.99999994f);
+    int channel = 0;
+    if (lobe.dispersive)
+    {
+        channel = min(int(choice * 3.0f), 2);
+        choice = choice * 3.0f - float(channel);
+    }
+    const float eta = channel == 0 ? lobe.eta.x : (channel == 1 ? lobe.eta.y : lobe.eta.z);
+    const vec3 h = lobe.is_delta ? vec3(0.0f, 0.0f, 1.0f) : openpbr_sample_vndf_spherical_cap(view, lobe.alpha, u);
+    const float o_dot_h = dot(view, h);
+    const float f = lobe.with_fresnel ? openpbr_fresnel_dielectric(o_dot_h, eta) : 0.0f;
+    const bool reflects = choice >= openpbr_dielectric_transmission_probability(lobe, f);
+    const uint kind = lobe.is_delta ? OPENPBR_LOBE_TYPE_SPECULAR : OPENPBR_LOBE_TYPE_GLOSSY;
+    vec3 light;
+    if (reflects)
+    {
+        light = reflect(-view, h);
+        if (light.z <= 0.0f)
+        {
+            return openpbr_make_no_lobe_sample();
+        }
+    }
+    else
+    {
+        light = refract(-view, h, 1.0f / eta);
+        if (light.z >= 0.0f || dot(light, light) < 0.5f)
+        {
+            return openpbr_make_no_lobe_sample();
+        }
+        light = normalize(light);
+    }
+    OpenPBR_LobeSample lobe_sample = openpbr_make_lobe_sample(
+        light, openpbr_lobe_type(lobe.lobe_id, kind | (reflects ? OPENPBR_LOBE_TYPE_REFLECTION : OPENPBR_LOBE_TYPE_TRANSMISSION)));
+    if (lobe.is_delta)
+    {
+        // Delta: the chosen branch carries F or (1 - F) over its probability, i.e. exactly 1
+        // per branch; a dispersive delta only lights the sampled channel (times 3 for its 1/3).
+        const vec3 weight = reflects ? lobe.reflection_weight : lobe.transmission_weight;
+        const vec3 channel_mask = lobe.dispersive ? vec3(channel == 0 ? 3.0f : 0.0f, channel == 1 ? 3.0f : 0.0f,
+                                                         channel == 2 ? 3.0f : 0.0f)
+                                                  : vec3(1.0f);
+        lobe_sample.delta_weight = weight * channel_mask;
+    }
+    return lobe_sample;
+}
+
+OPENPBR_NAMESPACE_END
+
+#endif

@@ -1,0 +1,26 @@
+#version 450
+// Conformance kernel (GLSL): the single-source headers compiled directly as GLSL through the
+// interop's GLSL backend; same bindings and body as conformance.slang.
+#extension GL_GOOGLE_include_directive : require
+layout(local_size_x = 64) in;
+
+#define OPENPBR_LANGUAGE_TARGET_GLSL 1
+#include "../../slang/openpbr.h"
+
+layout(std430, set = 0, binding = 1) readonly buffer ConformanceQueries { float conformance_queries[]; };
+layout(std430, set = 0, binding = 2) readonly buffer ConformanceMaterials { float conformance_materials[]; };
+layout(std430, set = 0, binding = 3) readonly buffer ConformanceParameters { uint conformance_parameters[]; };
+layout(std430, set = 0, binding = 4) writeonly buffer ConformanceResults { float conformance_results[]; };
+
+#define OPENPBR_QUERY_READ(index) conformance_queries[index]
+#define OPENPBR_MATERIAL_READ(index) conformance_materials[index]
+#define OPENPBR_RESULT_WRITE(index, value) conformance_results[index] = (value)
+#include "openpbr_conformance_kernel.h"
+
+void main()
+{
+    if (gl_GlobalInvocationID.x < conformance_parameters[0])
+    {
+        openpbr_conformance_run_query(gl_GlobalInvocationID.x);
+    }
+}

@@ -1,0 +1,507 @@
+// Tests for host/lut_generator: the shipped energy-compensation tables against a fresh
+// low-sample regeneration, physical bounds and closed-form limits, an independent quadrature of
+// the albedo integrals, determinism, half rounding and the file formats.
+// Needs OPENPBR_LUT_BIN_PATH and OPENPBR_LUT_INC_PATH (string literals: the shipped
+// slang/generated/openpbr_lut.bin and openpbr_lut_values.inc).
+#include "host/lut_generator.h"
+
+#include "slang/math/openpbr_fresnel.h"
+#include "slang/math/openpbr_ggx.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#ifndef OPENPBR_LUT_BIN_PATH
+#error "define OPENPBR_LUT_BIN_PATH as the path of slang/generated/openpbr_lut.bin"
+#endif
+#ifndef OPENPBR_LUT_INC_PATH
+#error "define OPENPBR_LUT_INC_PATH as the path of slang/generated/openpbr_lut_values.inc"
+#endif
+
+namespace {
+
+using namespace openpbr::host;
+
+const LutLayout layout = compiled_lut_layout();
+const int n2 = layout.size_2d;
+const int n3 = layout.size_3d;
+
+const std::vector<float>& shipped()
+{
+    static const std::vector<float> data = read_lut_binary(OPENPBR_LUT_BIN_PATH);
+    return data;
+}
+
+float at_2d(const std::vector<float>& data, const int mu_index, const int r_index)
+{
+    return data[layout.offset(lut_table_ggx_albedo) + std::size_t(r_index) * n2 + mu_index];
+}
+
+float at_3d(const std::vector<float>& data, const int table, const int mu_index, const int r_index, const int x_index)
+{
+    return data[layout.offset(table) + (std::size_t(x_index) * n3 + r_index) * n3 + mu_index];
+}
+
+double node(const int i, const int n) { return double(i) / double(n - 1); }
+
+// ---- Independent reference: the albedo integral by quadrature over light directions ----------
+//
+// E = integral over wi of f |wi.z|, with the BSDFs written out (Walter et al. 2007):
+//   reflection    f |cos_i| = F(wo.h) D(h) G2 / (4 wo.z),                h = normalize(wo + wi)
+//   transmission  f |cos_i| = eta^2 |wi.h| |wo.h| D(h) G2 / (wo.z (wo.h + eta wi.h)^2),
+//                 h = -normalize(wo + eta wi), valid where wo.h > 0 and wi.h < 0
+// (times 1 - F for E_RT). The generator never evaluates these: it samples visible normals and
+// uses G2 / G1, so agreement checks its directions, weights and sampling density.
+double quadrature_albedo(const int table, const double mu, const double r, const double x)
+{
+    using openpbr::vec2;
+    using openpbr::vec3;
+    const float mu_o = float(lut_mu_from_coordinate(mu));
+    const vec3 wo(std::sqrt(1.0f - mu_o * mu_o), 0.0f, mu_o);
+    const vec2 alpha(float(lut_alpha_from_coordinate(r)));
+    const float eta = float(lut_eta_from_coordinate(x));
+    const float lambda_o = openpbr::openpbr_ggx_lambda(wo, alpha);
+    const bool reflection = table != lut_table_dielectric_transmission;
+    const bool transmission = table == lut_table_dielectric_transmission || table == lut_table_dielectric_interface;
+
+    // Midpoint rule in (theta, phi); the integrand is symmetric in phi -> -phi.
+    const int n_theta = 1024;
+    const int n_phi = 1024;
+    const double d_theta = 0.5 * M_PI / n_theta;
+    const double d_phi = M_PI / n_phi;
+    double sum = 0.0;
+    for (int side = 0; side < 2; ++side)
+    {
+        if ((side == 0 && !reflection) || (side == 1 && !transmission))
+        {
+            continue;
+        }
+        for (int i = 0; i < n_theta; ++i)
+        {
+            const double theta = (i + 0.5) * d_theta;
+            const double sin_theta = std::sin(theta);
+            const double cos_theta = std::cos(theta);
+            for (int j = 0; j < n_phi; ++j)
+            {
+                const double phi = (j + 0.5) * d_phi;
+                const vec3 wi(float(sin_theta * std::cos(phi)), float(sin_theta * std::sin(phi)),
+                              float(side == 0 ? cos_theta : -cos_theta));
+                const float g2 = openpbr::openpbr_ggx_g2(lambda_o, openpbr::openpbr_ggx_lambda(wi, alpha));
+                double value = 0.0;
+                if (side == 0)
+                {
+                    const vec3 h = openpbr::normalize(wo + wi);
+                    const float f = table == lut_table_ggx_albedo
+                                        ? 1.0f
+                                        : openpbr::openpbr_fresnel_dielectric(openpbr::dot(wo, h), eta);
+                    value = f * openpbr::openpbr_ggx_d(h, alpha) * g2 / (4.0f * wo.z);
+                }
+                else
+                {
+                    vec3 h = -openpbr::normalize(wo + eta * wi);
+                    if (h.z < 0.0f)
+                    {
+                        h = -h;
+                    }
+                    const float wo_h = openpbr::dot(wo, h);
+                    const float wi_h = openpbr::dot(wi, h);
+                    if (wo_h <= 0.0f || wi_h >= 0.0f)
+                    {
+                        continue;
+                    }
+                    const float f = table == lut_table_dielectric_interface
+                                        ? 1.0f - openpbr::openpbr_fresnel_dielectric(wo_h, eta)
+                                        : 1.0f;
+                    const float denominator = wo_h + eta * wi_h;
+                    value = f * eta * eta * std::fabs(wi_h) * wo_h * openpbr::openpbr_ggx_d(h, alpha) * g2 /
+                            (wo.z * denominator * denominator);
+                }
+                sum += value * sin_theta;
+            }
+        }
+    }
+    return 2.0 * sum * d_theta * d_phi;
+}
+
+// ---- The shipped files -------------------------------------------------------------------------
+
+TEST(LutGenerator, ShippedBinaryHasTheCompiledLayout)
+{
+    EXPECT_EQ(shipped().size(), layout.total_count());
+    EXPECT_EQ(std::filesystem::file_size(OPENPBR_LUT_BIN_PATH), layout.total_count() * sizeof(float));
+}
+
+TEST(LutGenerator, ShippedIncAndBinaryHoldTheSameFloats)
+{
+    const std::vector<float> from_inc = read_lut_values_inc(OPENPBR_LUT_INC_PATH);
+    ASSERT_EQ(from_inc.size(), shipped().size());
+    for (std::size_t i = 0; i < from_inc.size(); ++i)
+    {
+        ASSERT_EQ(std::memcmp(&from_inc[i], &shipped()[i], sizeof(float)), 0)
+            << "entry " << i << ": .inc " << from_inc[i] << ", .bin " << shipped()[i];
+    }
+}
+
+TEST(LutGenerator, ShippedIncLiteralsAreValidInEveryShadingLanguage)
+{
+    // GLSL needs a decimal point or an exponent before the "f" suffix ("1f" is an error there).
+    std::ifstream file(OPENPBR_LUT_INC_PATH);
+    std::string line;
+    std::size_t literals = 0;
+    while (std::getline(file, line))
+    {
+        if (line.rfind("//", 0) == 0)
+        {
+            continue;
+        }
+        if (!line.empty() && line.back() == ',')
+        {
+            line.pop_back();
+        }
+        ASSERT_FALSE(line.empty());
+        EXPECT_EQ(line.back(), 'f') << line;
+        EXPECT_NE(line.find_first_of(".eE"), std::string::npos) << line;
+        ++literals;
+    }
+    EXPECT_EQ(literals, layout.total_count());
+}
+
+// A regeneration with 4096 samples per cell (instead of the shipped 65536) must reproduce the
+// shipped tables. Every sample weight lies in [0, 1], so plain Monte Carlo with 4096 samples
+// would have a standard deviation of at most 0.5 / 64 = 0.008 per cell; the (0, 2)-sequence
+// converges about as N^-0.85 here (max error over the 13312 cells: 1.0e-2 at 1024 samples,
+// 3.4e-3 at 4096, 1.4e-3 at 8192, the worst cells being those whose visible normals straddle a
+// total-internal-reflection boundary). The tolerance, 0.01, is three times the observed error
+// and well below what a wrong index order, axis map or weight produces (> 0.03).
+TEST(LutGenerator, LowSampleRegenerationMatchesTheShippedTables)
+{
+    LutGeneratorOptions options;
+    options.samples = 4096;
+    options.progress = false;
+    const auto start = std::chrono::steady_clock::now();
+    const std::vector<float> regenerated = generate_lut(options);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    ASSERT_EQ(regenerated.size(), shipped().size());
+    for (int table = 0; table < lut_table_count; ++table)
+    {
+        const double difference = max_abs_difference(regenerated, shipped(), table);
+        std::printf("  %-24s max |4096 samples - shipped| = %.2e\n", lut_table_name(table), difference);
+        EXPECT_LE(difference, 0.01) << lut_table_name(table);
+    }
+    std::printf("  regeneration with 4096 samples/cell: %.2f s\n", seconds);
+}
+
+// ---- Physical bounds and closed-form limits of the shipped tables -------------------------
+
+TEST(LutGenerator, ShippedValuesAreAlbedos)
+{
+    for (std::size_t i = 0; i < shipped().size(); ++i)
+    {
+        ASSERT_GE(shipped()[i], 0.0f) << "entry " << i;
+        ASSERT_LE(shipped()[i], 1.0f + 1e-6f) << "entry " << i;
+    }
+}
+
+TEST(LutGenerator, SmoothMirrorReflectsEverything)
+{
+    // r = 0 is the delta limit: E_ggx = 1 wherever the alpha floor (1e-4) is negligible next to
+    // mu, i.e. at every node but mu = 0.
+    for (int mu = 1; mu < n2; ++mu)
+    {
+        EXPECT_NEAR(at_2d(shipped(), mu, 0), 1.0f, 1e-4f) << "mu node " << mu;
+    }
+    // Rough GGX loses energy to multiple scattering, the more the rougher. Toward grazing view
+    // the single-scattering albedo rises again (Lambda(wo) -> infinity, so G2 / G1 -> 1, and
+    // every mirrored visible normal sends the light upward): at r = 1 E falls from about 1 at
+    // mu -> 0 to about 0.31 at mu = 1.
+    EXPECT_LT(at_2d(shipped(), n2 - 1, n2 - 1), 0.35f);
+    EXPECT_GT(at_2d(shipped(), 0, n2 - 1), 0.99f);
+    for (int r = 1; r < n2; ++r)
+    {
+        EXPECT_LE(at_2d(shipped(), n2 - 1, r), at_2d(shipped(), n2 - 1, r - 1) + 1e-6f) << "r node " << r;
+    }
+    for (int mu = 1; mu < n2; ++mu)
+    {
+        EXPECT_LE(at_2d(shipped(), mu, n2 - 1), at_2d(shipped(), mu - 1, n2 - 1) + 1e-6f) << "mu node " << mu;
+    }
+}
+
+TEST(LutGenerator, NormalIncidenceReflectionIsF0)
+{
+    for (int x = 0; x < n3; ++x)
+    {
+        const double eta = lut_eta_from_coordinate(node(x, n3));
+        const double f0 = std::pow((eta - 1.0) / (eta + 1.0), 2.0);
+        EXPECT_NEAR(at_3d(shipped(), lut_table_dielectric_reflection, n3 - 1, 0, x), f0, 1e-3) << "eta " << eta;
+    }
+    // eta = 1 (x = 0.5, not a node of the 16-node grid): no interface, no reflection.
+    EXPECT_NEAR(estimate_lut_entry(lut_table_dielectric_reflection, 0.7, 0.5, 0.5, 4096, 1), 0.0, 1e-7);
+    EXPECT_NEAR(estimate_lut_entry(lut_table_dielectric_reflection, 1.0, 0.0, 0.5, 4096, 1), 0.0, 1e-7);
+}
+
+TEST(LutGenerator, SmoothInterfaceConservesEnergy)
+{
+    for (int x = 0; x < n3; ++x)
+    {
+        for (int r = 0; r < n3; ++r)
+        {
+            for (int mu = 0; mu < n3; ++mu)
+            {
+                EXPECT_LE(at_3d(shipped(), lut_table_dielectric_interface, mu, r, x), 1.0f + 1e-6f);
+            }
+        }
+        // r = 0: reflection + refraction of a smooth interface sum to 1 (mu = 0 is excluded: the
+        // alpha floor is not negligible there).
+        for (int mu = 1; mu < n3; ++mu)
+        {
+            EXPECT_NEAR(at_3d(shipped(), lut_table_dielectric_interface, mu, 0, x), 1.0f, 2e-3f)
+                << "mu node " << mu << ", x node " << x;
+        }
+    }
+    // eta = 1 with small roughness: the light passes straight through.
+    EXPECT_NEAR(estimate_lut_entry(lut_table_dielectric_transmission, 0.6, 0.0, 0.5, 4096, 1), 1.0, 1e-4);
+    EXPECT_NEAR(estimate_lut_entry(lut_table_dielectric_transmission, 0.6, 0.1, 0.5, 4096, 1), 1.0, 1e-3);
+    EXPECT_NEAR(estimate_lut_entry(lut_table_dielectric_interface, 0.6, 0.1, 0.5, 4096, 1), 1.0, 1e-3);
+}
+
+TEST(LutGenerator, TotalInternalReflection)
+{
+    // Inside the denser medium (eta < 1) at grazing view beyond the critical angle a smooth
+    // interface transmits nothing and reflects everything: eta = 1/3 at x = 0, mu = 0.2 gives
+    // sin_t = 0.98 * 3 > 1.
+    const int mu = int(std::lround(0.2 * (n3 - 1)));
+    EXPECT_NEAR(at_3d(shipped(), lut_table_dielectric_transmission, mu, 0, 0), 0.0f, 1e-4f);
+    EXPECT_NEAR(at_3d(shipped(), lut_table_dielectric_reflection, mu, 0, 0), 1.0f, 2e-3f);
+}
+
+TEST(LutGenerator, ShippedTablesMatchAnIndependentQuadrature)
+{
+    struct Point
+    {
+        int table;
+        int mu, r, x;  // node indices
+    };
+    const int last = n3 - 1;
+    const Point points[] = {
+        {lut_table_ggx_albedo, n2 - 1, n2 - 1, 0},     {lut_table_ggx_albedo, n2 / 4, (2 * n2) / 3, 0},
+        {lut_table_ggx_albedo, 1, n2 - 1, 0},
+        {lut_table_dielectric_reflection, last / 2, last / 2, (3 * last) / 4},
+        {lut_table_dielectric_reflection, last / 5, last, last / 4},
+        {lut_table_dielectric_transmission, last / 2, last / 2, (3 * last) / 4},
+        {lut_table_dielectric_transmission, (3 * last) / 4, last, last / 4},
+        {lut_table_dielectric_interface, last / 3, (2 * last) / 3, (3 * last) / 4},
+        {lut_table_dielectric_interface, last, last, last / 5},
+    };
+    for (const Point& p : points)
+    {
+        const int n = p.table == lut_table_ggx_albedo ? n2 : n3;
+        const double reference = quadrature_albedo(p.table, node(p.mu, n), node(p.r, n), node(p.x, n));
+        const float value = p.table == lut_table_ggx_albedo ? at_2d(shipped(), p.mu, p.r)
+                                                            : at_3d(shipped(), p.table, p.mu, p.r, p.x);
+        // Observed: |table - quadrature| from 6e-7 to 1.5e-4 (the latter in a cell with a total
+        // internal reflection boundary, where the midpoint rule is least accurate).
+        EXPECT_NEAR(value, reference, 5e-4) << lut_table_name(p.table) << " at node mu " << p.mu << ", r " << p.r
+                                            << ", x " << p.x;
+    }
+}
+
+// ---- Generator behaviour -----------------------------------------------------------------------
+
+TEST(LutGenerator, DeterministicAndIndependentOfThreadCount)
+{
+    LutGeneratorOptions options;
+    options.size_2d = 5;
+    options.size_3d = 4;
+    options.samples = 256;
+    options.progress = false;
+    options.threads = 1;
+    const std::vector<float> one_thread = generate_lut(options);
+    options.threads = 0;
+    const std::vector<float> all_threads = generate_lut(options);
+    ASSERT_EQ(one_thread.size(), std::size_t(5 * 5 + 3 * 4 * 4 * 4));
+    EXPECT_EQ(std::memcmp(one_thread.data(), all_threads.data(), one_thread.size() * sizeof(float)), 0);
+    // Each entry is estimate_lut_entry at its node with its cell seed.
+    const LutLayout small = options.layout();
+    EXPECT_EQ(one_thread[small.offset(lut_table_dielectric_transmission) + (2 * 4 + 1) * 4 + 3],
+              float(estimate_lut_entry(lut_table_dielectric_transmission, 1.0, 1.0 / 3.0, 2.0 / 3.0, 256,
+                                       lut_cell_seed(lut_table_dielectric_transmission, (2 * 4 + 1) * 4 + 3))));
+}
+
+TEST(LutGenerator, OtherSizesKeepTheNodeValues)
+{
+    // A 17-node 3D grid has x = 0.5 (eta = 1) as a node, where E_R = 0 and E_T0 = E_RT. The
+    // mu = 0 node is left out: at mu = 1e-4 the float Fresnel factor of the shared
+    // openpbr_fresnel_dielectric computes 1 - cos^2 = 1 and reports total internal reflection.
+    LutGeneratorOptions options;
+    options.size_2d = 2;
+    options.size_3d = 17;
+    options.samples = 256;
+    options.progress = false;
+    const std::vector<float> data = generate_lut(options);
+    const LutLayout other = options.layout();
+    ASSERT_EQ(data.size(), other.total_count());
+    EXPECT_EQ(max_abs_difference(data, data, lut_table_dielectric_interface, other), 0.0);
+    for (int r = 0; r < 17; ++r)
+    {
+        for (int mu = 1; mu < 17; ++mu)
+        {
+            const std::size_t cell = (std::size_t(8) * 17 + r) * 17 + mu;
+            EXPECT_NEAR(data[other.offset(lut_table_dielectric_reflection) + cell], 0.0f, 1e-7f);
+            EXPECT_NEAR(data[other.offset(lut_table_dielectric_transmission) + cell],
+                        data[other.offset(lut_table_dielectric_interface) + cell], 1e-6f);
+        }
+    }
+    // 2D corners: mu = 1 and r = 0 -> 1.
+    EXPECT_NEAR(data[1], 1.0f, 1e-6f);
+}
+
+TEST(LutGenerator, HalfPrecisionRounding)
+{
+    EXPECT_EQ(round_to_half(1.0f), 1.0f);
+    EXPECT_EQ(round_to_half(0.0f), 0.0f);
+    EXPECT_EQ(round_to_half(1.0f + std::ldexp(1.0f, -11)), 1.0f);                          // tie -> even
+    EXPECT_EQ(round_to_half(1.0f + 3.0f * std::ldexp(1.0f, -11)), 1.0f + std::ldexp(1.0f, -9));  // tie -> even
+    EXPECT_EQ(round_to_half(1.0f + std::ldexp(1.0f, -11) + std::ldexp(1.0f, -20)), 1.0f + std::ldexp(1.0f, -10));
+    EXPECT_EQ(round_to_half(2.0f - std::ldexp(1.0f, -12)), 2.0f);  // carry into the exponent
+    EXPECT_EQ(round_to_half(0.1f), 0.0999755859375f);
+    EXPECT_EQ(round_to_half(65504.0f), 65504.0f);
+    EXPECT_TRUE(std::isinf(round_to_half(65520.0f)));
+    EXPECT_EQ(round_to_half(std::ldexp(1.0f, -24)), std::ldexp(1.0f, -24));  // smallest subnormal
+    EXPECT_EQ(round_to_half(std::ldexp(1.0f, -26)), 0.0f);
+
+    LutGeneratorOptions options;
+    options.size_2d = 4;
+    options.size_3d = 3;
+    options.samples = 64;
+    options.progress = false;
+    const std::vector<float> full = generate_lut(options);
+    options.bits = 16;
+    const std::vector<float> half = generate_lut(options);
+    ASSERT_EQ(full.size(), half.size());
+    for (std::size_t i = 0; i < full.size(); ++i)
+    {
+        EXPECT_EQ(half[i], round_to_half(full[i]));
+        // Half a unit in the last place: 2^-11 relative, or 2^-25 among the half subnormals.
+        EXPECT_LE(std::fabs(half[i] - full[i]), std::max(std::ldexp(std::fabs(full[i]), -11), std::ldexp(1.0f, -25)));
+    }
+}
+
+TEST(LutGenerator, RejectsInvalidOptions)
+{
+    LutGeneratorOptions options;
+    options.progress = false;
+    options.samples = 0;
+    EXPECT_THROW(generate_lut(options), std::invalid_argument);
+    options.samples = 16;
+    options.bits = 8;
+    EXPECT_THROW(generate_lut(options), std::invalid_argument);
+    options.bits = 32;
+    options.size_3d = 1;
+    EXPECT_THROW(generate_lut(options), std::invalid_argument);
+    options.size_3d = 16;
+    options.threads = -1;
+    EXPECT_THROW(generate_lut(options), std::invalid_argument);
+    EXPECT_THROW(lut_table_name(4), std::invalid_argument);
+    EXPECT_THROW(max_abs_difference(std::vector<float>(3), std::vector<float>(3), 0), std::invalid_argument);
+}
+
+// ---- Files -----------------------------------------------------------------------------------
+
+class LutFiles : public ::testing::Test
+{
+protected:
+    void SetUp() override
+    {
+        const ::testing::UnitTest& unit_test = *::testing::UnitTest::GetInstance();
+        directory_ = std::filesystem::temp_directory_path() /
+                     ("openpbr_lut_generator_test_" + std::to_string(unit_test.random_seed()) + "_" +
+                      unit_test.current_test_info()->name());
+        std::filesystem::create_directories(directory_);
+    }
+    void TearDown() override { std::filesystem::remove_all(directory_); }
+    std::filesystem::path directory_;
+};
+
+TEST_F(LutFiles, RoundTripIsExact)
+{
+    const std::vector<float> values = {0.0f, 1.0f, 0.1f, 1.0f / 3.0f, 0.99999994f, 1e-7f, 5.9604645e-08f, 0.5f};
+    const auto inc = directory_ / "values.inc";
+    const auto bin = directory_ / "values.bin";
+    write_lut_values_inc(inc, values, "first line\nsecond line");
+    write_lut_binary(bin, values);
+    const std::vector<float> from_inc = read_lut_values_inc(inc);
+    const std::vector<float> from_bin = read_lut_binary(bin, values.size());
+    ASSERT_EQ(from_inc.size(), values.size());
+    ASSERT_EQ(from_bin.size(), values.size());
+    EXPECT_EQ(std::memcmp(from_inc.data(), values.data(), values.size() * sizeof(float)), 0);
+    EXPECT_EQ(std::memcmp(from_bin.data(), values.data(), values.size() * sizeof(float)), 0);
+    EXPECT_EQ(std::filesystem::file_size(bin), values.size() * sizeof(float));
+    EXPECT_EQ(read_lut_binary(bin, 0).size(), values.size());
+
+    std::ifstream file(inc);
+    std::string line;
+    std::getline(file, line);
+    EXPECT_EQ(line, "// first line");
+    std::getline(file, line);
+    std::getline(file, line);
+    EXPECT_EQ(line, "0.00000000e+00f,");
+    std::getline(file, line);
+    EXPECT_EQ(line, "1.00000000e+00f,");
+    EXPECT_FALSE(std::filesystem::exists(directory_ / "values.inc.tmp"));
+}
+
+TEST_F(LutFiles, ErrorsNameThePath)
+{
+    const auto missing = directory_ / "missing.bin";
+    try
+    {
+        read_lut_binary(missing);
+        FAIL() << "no exception";
+    }
+    catch (const std::runtime_error& error)
+    {
+        EXPECT_NE(std::string(error.what()).find(missing.string()), std::string::npos) << error.what();
+    }
+
+    const auto short_file = directory_ / "short.bin";
+    write_lut_binary(short_file, std::vector<float>(10, 0.5f));
+    try
+    {
+        read_lut_binary(short_file, 11);
+        FAIL() << "no exception";
+    }
+    catch (const std::runtime_error& error)
+    {
+        EXPECT_NE(std::string(error.what()).find(short_file.string()), std::string::npos) << error.what();
+    }
+    {
+        std::ofstream odd(directory_ / "odd.bin", std::ios::binary);
+        odd << "12345";
+    }
+    EXPECT_THROW(read_lut_binary(directory_ / "odd.bin", 0), std::runtime_error);
+
+    const auto bad_inc = directory_ / "bad.inc";
+    {
+        std::ofstream bad(bad_inc);
+        bad << "1.0f,\n2.0x,\n";
+    }
+    EXPECT_THROW(read_lut_values_inc(bad_inc), std::runtime_error);
+    {
+        std::ofstream bad(bad_inc);
+        bad << "1.0f\n2.0f\n";  // missing comma
+    }
+    EXPECT_THROW(read_lut_values_inc(bad_inc), std::runtime_error);
+    EXPECT_THROW(write_lut_binary(directory_ / "no" / "such" / "dir.bin", {1.0f}), std::runtime_error);
+    EXPECT_THROW(write_lut_binary(directory_ / "nan.bin", {std::nanf("")}), std::runtime_error);
+}
+
+}  // namespace
