@@ -57,6 +57,12 @@ double relative_error(float gpu, float cpu)
     return std::fabs(double(gpu) - double(cpu)) / std::max(std::fabs(double(cpu)), 1e-3);
 }
 
+struct GpuBatchResult
+{
+    std::vector<float> results;
+    DispatchTiming timing;
+};
+
 struct GpuPath
 {
     std::string name;
@@ -75,42 +81,58 @@ const std::vector<GpuPath>& gpu_paths()
     return paths;
 }
 
-// Bindings shared by every conformance kernel: 0 tables, 1 queries, 2 materials,
-// 3 parameters, 4 results.
+// Bindings shared by every conformance kernel: 0 tables, 1 fuzz table, 2 queries,
+// 3 materials, 4 parameters, 5 results.
+GpuBatchResult execute_gpu_path(const GpuPath& path, VulkanContext& context, const std::vector<float>& queries,
+                                const std::vector<float>& materials, const std::string& kernel_directory)
+{
+    const std::string kernel_path = kernel_directory + "/" + path.kernel_file;
+    const std::size_t query_count = queries.size() / OPENPBR_QUERY_FLOATS;
+
+    ComputePipelineDescription description;
+    description.spirv_words = load_spirv_file(kernel_path);
+    description.entry_point = path.entry_point;
+    description.bindings = {{0, false}, {1, false}, {2, false}, {3, false}, {4, false}, {5, false}};
+    ComputePipeline pipeline(context, description);
+
+    std::vector<std::byte> lut_bytes = to_bytes(shipped_lut());
+    std::vector<std::byte> fuzz_bytes = to_bytes(shipped_fuzz_ltc());
+    std::vector<std::byte> query_bytes = to_bytes(queries);
+    std::vector<std::byte> material_bytes = to_bytes(materials);
+    std::vector<std::byte> result_bytes(query_count * OPENPBR_RESULT_FLOATS * sizeof(float));
+    std::vector<std::byte> parameter_bytes = to_bytes(std::vector<std::uint32_t>{std::uint32_t(query_count), 0, 0, 0});
+    const std::vector<BufferBinding> buffers = {{0, &lut_bytes, false},       {1, &fuzz_bytes, false},
+                                                {2, &query_bytes, false},     {3, &material_bytes, false},
+                                                {4, &parameter_bytes, false}, {5, &result_bytes, true}};
+    const std::uint32_t groups = std::uint32_t((query_count + 63) / 64);
+    GpuBatchResult batch;
+    batch.timing = run(pipeline, buffers, groups, 1, 1, 3);
+    batch.results = from_bytes<float>(result_bytes);
+    return batch;
+}
+
 ConformancePathResult run_gpu_path(const GpuPath& path, VulkanContext& context, const std::vector<float>& queries,
                                    const std::vector<float>& materials, const std::vector<float>& cpu_results,
                                    const ConformanceOptions& options)
 {
     ConformancePathResult result;
     result.name = path.name;
-    const std::string kernel_path = options.kernel_directory + "/" + path.kernel_file;
     const std::size_t query_count = queries.size() / OPENPBR_QUERY_FLOATS;
-
-    ComputePipelineDescription description;
-    description.spirv_words = load_spirv_file(kernel_path);
-    description.entry_point = path.entry_point;
-    description.bindings = {{0, false}, {1, false}, {2, false}, {3, false}, {4, false}};
-    ComputePipeline pipeline(context, description);
-
-    std::vector<std::byte> lut_bytes = to_bytes(shipped_lut());
-    std::vector<std::byte> query_bytes = to_bytes(queries);
-    std::vector<std::byte> material_bytes = to_bytes(materials);
-    std::vector<std::byte> result_bytes(query_count * OPENPBR_RESULT_FLOATS * sizeof(float));
-    std::vector<std::byte> parameter_bytes = to_bytes(std::vector<std::uint32_t>{std::uint32_t(query_count), 0, 0, 0});
-    const std::vector<BufferBinding> buffers = {{0, &lut_bytes, false},
-                                                {1, &query_bytes, false},
-                                                {2, &material_bytes, false},
-                                                {3, &parameter_bytes, false},
-                                                {4, &result_bytes, true}};
-    const std::uint32_t groups = std::uint32_t((query_count + 63) / 64);
-    const DispatchTiming timing = run(pipeline, buffers, groups, 1, 1, 3);
+    context.clear_validation_messages();
+    const GpuBatchResult batch = execute_gpu_path(path, context, queries, materials, options.kernel_directory);
+    const DispatchTiming& timing = batch.timing;
     result.executed = true;
     result.note = context.device_name();
     result.first_dispatch_ms = timing.first_dispatch_ms;
     result.queries_per_second = timing.dispatch_ms > 0.0 ? double(query_count) / (timing.dispatch_ms * 1e-3) : 0.0;
-    result.validation_messages = context.validation_messages().size();
+    const std::vector<std::string> messages = context.validation_messages();
+    result.validation_messages = messages.size();
+    if (!messages.empty())
+    {
+        result.note += "; validation: " + messages.front();
+    }
 
-    const std::vector<float> gpu_results = from_bytes<float>(result_bytes);
+    const std::vector<float>& gpu_results = batch.results;
     std::vector<double> errors;
     errors.reserve(query_count * (eval_slot_end + sample_slot_end - sample_slot_begin + 3));
     std::size_t mismatches = 0;
@@ -158,6 +180,20 @@ ConformancePathResult run_gpu_path(const GpuPath& path, VulkanContext& context, 
 }
 
 }  // namespace
+
+std::vector<float> run_conformance_gpu(const std::string& path_name, VulkanContext& context,
+                                       const std::vector<float>& queries, const std::vector<float>& materials,
+                                       const std::string& kernel_directory)
+{
+    for (const GpuPath& path : gpu_paths())
+    {
+        if (path.name == path_name)
+        {
+            return execute_gpu_path(path, context, queries, materials, kernel_directory).results;
+        }
+    }
+    throw std::invalid_argument("unknown GPU path '" + path_name + "'");
+}
 
 std::vector<std::string> known_conformance_paths()
 {

@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "host/material_library.h"
+#include "host/vulkan_runner.h"
 
 namespace openpbr::host {
 
@@ -63,6 +64,12 @@ std::vector<float> make_queries(std::size_t query_count, std::size_t material_co
 
 // The CPU build of the conformance kernel; results as laid out in openpbr_conformance_kernel.h.
 std::vector<float> run_conformance_cpu(const std::vector<float>& queries, const std::vector<float>& materials);
+
+// One GPU path on a query batch (results as the CPU runner lays them out). Throws when the
+// path is unknown or its kernel cannot be loaded.
+std::vector<float> run_conformance_gpu(const std::string& path_name, VulkanContext& context,
+                                       const std::vector<float>& queries, const std::vector<float>& materials,
+                                       const std::string& kernel_directory);
 
 ConformanceReport run_conformance(const std::vector<Material>& materials, const ConformanceOptions& options);
 

@@ -7,6 +7,7 @@
 #include <CLI/CLI.hpp>
 
 #include "host/conformance.h"
+#include "host/fuzz_fit.h"
 #include "host/lut_generator.h"
 #include "host/material_library.h"
 
@@ -94,6 +95,16 @@ int main(int argc, char** argv)
         ->capture_default_str();
     lutgen->add_flag("--progress", lut_options.progress_always, "print progress even when stderr is not a terminal");
 
+    CLI::App* fuzzgen = app.add_subcommand("fuzzgen", "simulate the fuzz layer and fit its LTC table");
+    openpbr::host::FuzzFitOptions fuzz_options;
+    std::string fuzz_output_directory = OPENPBR_DEFAULT_GENERATED_DIR;
+    fuzzgen->add_option("--photons", fuzz_options.photons, "photons per table cell")->capture_default_str()
+        ->check(CLI::Range(std::uint64_t(1024), std::uint64_t(1) << 34));
+    fuzzgen->add_option("--seed", fuzz_options.seed, "base seed of the per-cell streams")->capture_default_str();
+    fuzzgen->add_option("-o,--output-dir", fuzz_output_directory,
+                        "where openpbr_fuzz_ltc_values.inc and openpbr_fuzz_ltc.bin go")->capture_default_str();
+    fuzzgen->add_flag("--progress", fuzz_options.progress, "print a progress line per 10 %");
+
     CLI11_PARSE(app, argc, argv);
 
     try
@@ -107,6 +118,15 @@ int main(int argc, char** argv)
             openpbr::host::write_lut_binary(binary_path, table);
             std::cout << "wrote " << values_path << " and " << binary_path << " (" << table.size() << " values, "
                       << openpbr::host::describe(lut_options) << ")\n";
+        }
+        if (fuzzgen->parsed())
+        {
+            const std::vector<float> table = openpbr::host::generate_fuzz_table(fuzz_options);
+            const std::string values_path = fuzz_output_directory + "/openpbr_fuzz_ltc_values.inc";
+            const std::string binary_path = fuzz_output_directory + "/openpbr_fuzz_ltc.bin";
+            openpbr::host::write_fuzz_values_inc(values_path, table);
+            openpbr::host::write_fuzz_binary(binary_path, table);
+            std::cout << "wrote " << values_path << " and " << binary_path << " (" << table.size() << " values)\n";
         }
         if (conformance->parsed())
         {

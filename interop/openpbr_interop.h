@@ -8,6 +8,8 @@
 //
 // Selection (at most one OPENPBR_LANGUAGE_TARGET_* may be set by the user):
 //   OPENPBR_LANGUAGE_TARGET_SLANG=1  chosen explicitly (e.g. by slang/openpbr.slang)
+//   OPENPBR_LANGUAGE_TARGET_HLSL     chosen explicitly or auto-detected from __HLSL_VERSION
+//                                    (DXC); HLSL users take the generated openpbr.hlsl
 //   OPENPBR_LANGUAGE_TARGET_CUDA     auto-detected from __CUDACC__
 //   OPENPBR_LANGUAGE_TARGET_METAL    auto-detected from __METAL_VERSION__
 //   OPENPBR_LANGUAGE_TARGET_CPP      auto-detected from __cplusplus
@@ -21,14 +23,16 @@
 
 #if (defined(OPENPBR_LANGUAGE_TARGET_SLANG) + defined(OPENPBR_LANGUAGE_TARGET_CUDA) + \
      defined(OPENPBR_LANGUAGE_TARGET_METAL) + defined(OPENPBR_LANGUAGE_TARGET_CPP) +   \
-     defined(OPENPBR_LANGUAGE_TARGET_GLSL)) > 1
+     defined(OPENPBR_LANGUAGE_TARGET_GLSL) + defined(OPENPBR_LANGUAGE_TARGET_HLSL)) > 1
 #error "openpbr_interop.h: more than one OPENPBR_LANGUAGE_TARGET_* is defined; set at most one"
 #endif
 
 #if !defined(OPENPBR_LANGUAGE_TARGET_SLANG) && !defined(OPENPBR_LANGUAGE_TARGET_CUDA) && \
     !defined(OPENPBR_LANGUAGE_TARGET_METAL) && !defined(OPENPBR_LANGUAGE_TARGET_CPP) &&   \
-    !defined(OPENPBR_LANGUAGE_TARGET_GLSL)
-#if defined(__CUDACC__)
+    !defined(OPENPBR_LANGUAGE_TARGET_GLSL) && !defined(OPENPBR_LANGUAGE_TARGET_HLSL)
+#if defined(__HLSL_VERSION)
+#define OPENPBR_LANGUAGE_TARGET_HLSL 1
+#elif defined(__CUDACC__)
 #define OPENPBR_LANGUAGE_TARGET_CUDA 1
 #elif defined(__METAL_VERSION__)
 #define OPENPBR_LANGUAGE_TARGET_METAL 1
@@ -45,6 +49,8 @@
 #include "openpbr_interop_cuda.h"
 #elif defined(OPENPBR_LANGUAGE_TARGET_METAL)
 #include "openpbr_interop_metal.h"
+#elif defined(OPENPBR_LANGUAGE_TARGET_HLSL)
+#include "openpbr_interop_hlsl.h"
 #elif defined(OPENPBR_LANGUAGE_TARGET_CPP)
 #include "openpbr_interop_cpp.h"
 #else

@@ -11,6 +11,11 @@
 #define fract frac
 #define inversesqrt rsqrt
 
+// Token pasting through one level of expansion, e.g. OPENPBR_CONCATENATE(t, 0) -> t0 for an
+// HLSL register named after a binding macro.
+#define OPENPBR_CONCATENATE_TOKENS(a, b) a##b
+#define OPENPBR_CONCATENATE(a, b) OPENPBR_CONCATENATE_TOKENS(a, b)
+
 #define OPENPBR_NAMESPACE_BEGIN
 #define OPENPBR_NAMESPACE_END
 #define OPENPBR_FUNC

@@ -53,7 +53,7 @@
 #define OPENPBR_LUT_TOTAL_COUNT (OPENPBR_LUT_DIELECTRIC_INTERFACE_OFFSET + OPENPBR_LUT_3D_COUNT)
 
 #if !defined(OPENPBR_LUT_MODE_ARRAY) && !defined(OPENPBR_LUT_MODE_BUFFER) && !defined(OPENPBR_LUT_MODE_TEXTURE)
-#if defined(OPENPBR_LANGUAGE_TARGET_SLANG) || defined(OPENPBR_LANGUAGE_TARGET_GLSL)
+#if defined(OPENPBR_LANGUAGE_TARGET_SLANG) || defined(OPENPBR_LANGUAGE_TARGET_GLSL) || defined(OPENPBR_LANGUAGE_TARGET_HLSL)
 #define OPENPBR_LUT_MODE_BUFFER 1
 #else
 #define OPENPBR_LUT_MODE_ARRAY 1
@@ -73,14 +73,15 @@ const float openpbr_lut_data[OPENPBR_LUT_TOTAL_COUNT] = float[](
 #include "generated/openpbr_lut_values.inc"
 );
 #define OPENPBR_LUT_FETCH(index) openpbr_lut_data[index]
-#elif defined(OPENPBR_LANGUAGE_TARGET_SLANG)
+#elif defined(OPENPBR_LANGUAGE_TARGET_SLANG) || defined(OPENPBR_LANGUAGE_TARGET_HLSL)
 static const float openpbr_lut_data[OPENPBR_LUT_TOTAL_COUNT] = {
 #include "generated/openpbr_lut_values.inc"
 };
 #define OPENPBR_LUT_FETCH(index) openpbr_lut_data[index]
 #elif defined(OPENPBR_LANGUAGE_TARGET_CUDA)
 namespace openpbr {
-__constant__ float openpbr_lut_data_device[OPENPBR_LUT_TOTAL_COUNT] = {
+// Global memory, not __constant__: the tables (187 KiB) exceed the 64 KiB constant bank.
+__device__ const float openpbr_lut_data_device[OPENPBR_LUT_TOTAL_COUNT] = {
 #include "generated/openpbr_lut_values.inc"
 };
 static const float openpbr_lut_data_host[OPENPBR_LUT_TOTAL_COUNT] = {
@@ -108,7 +109,11 @@ inline constexpr float openpbr_lut_data[OPENPBR_LUT_TOTAL_COUNT] = {
 #endif
 #elif defined(OPENPBR_LUT_MODE_BUFFER)
 #if defined(OPENPBR_LANGUAGE_TARGET_SLANG)
-[[vk::binding(OPENPBR_LUT_BINDING, 0)]] StructuredBuffer<float> openpbr_lut_data;
+// The explicit register keeps Slang's HLSL output in step with the Vulkan binding
+// (HLSL front ends then map t<N> to binding N).
+[[vk::binding(OPENPBR_LUT_BINDING, 0)]] StructuredBuffer<float> openpbr_lut_data : register(OPENPBR_CONCATENATE(t, OPENPBR_LUT_BINDING));
+#elif defined(OPENPBR_LANGUAGE_TARGET_HLSL)
+StructuredBuffer<float> openpbr_lut_data : register(OPENPBR_CONCATENATE(t, OPENPBR_LUT_BINDING), OPENPBR_CONCATENATE(space, OPENPBR_HLSL_REGISTER_SPACE));
 #elif defined(OPENPBR_LANGUAGE_TARGET_GLSL)
 layout(std430, set = 0, binding = OPENPBR_LUT_BINDING) readonly buffer OpenPBR_LutBuffer { float openpbr_lut_data[]; };
 #elif defined(OPENPBR_LANGUAGE_TARGET_CPP)

@@ -44,7 +44,7 @@ TEST_P(ConformancePath, MatchesCpuBuild)
     EXPECT_LE(found->max_relative_error, 1e-3) << found->worst_output;
     EXPECT_LE(found->p999_relative_error, 1e-5);
     EXPECT_LE(found->lobe_mismatch_fraction, 1e-3);
-    EXPECT_EQ(found->validation_messages, 0u);
+    EXPECT_EQ(found->validation_messages, 0u) << found->note;
 }
 
 INSTANTIATE_TEST_SUITE_P(AllPaths, ConformancePath,

@@ -58,7 +58,7 @@
 #define OPENPBR_FUZZ_LTC_MODE_BUFFER 1
 #elif defined(OPENPBR_LUT_MODE_TEXTURE)
 #define OPENPBR_FUZZ_LTC_MODE_TEXTURE 1
-#elif defined(OPENPBR_LANGUAGE_TARGET_SLANG) || defined(OPENPBR_LANGUAGE_TARGET_GLSL)
+#elif defined(OPENPBR_LANGUAGE_TARGET_SLANG) || defined(OPENPBR_LANGUAGE_TARGET_GLSL) || defined(OPENPBR_LANGUAGE_TARGET_HLSL)
 #define OPENPBR_FUZZ_LTC_MODE_BUFFER 1
 #else
 #define OPENPBR_FUZZ_LTC_MODE_ARRAY 1
@@ -78,7 +78,7 @@ const float openpbr_fuzz_ltc_data[OPENPBR_FUZZ_LTC_TOTAL_COUNT] = float[](
 #include "../generated/openpbr_fuzz_ltc_values.inc"
 );
 #define OPENPBR_FUZZ_LTC_FETCH(index) openpbr_fuzz_ltc_data[index]
-#elif defined(OPENPBR_LANGUAGE_TARGET_SLANG)
+#elif defined(OPENPBR_LANGUAGE_TARGET_SLANG) || defined(OPENPBR_LANGUAGE_TARGET_HLSL)
 static const float openpbr_fuzz_ltc_data[OPENPBR_FUZZ_LTC_TOTAL_COUNT] = {
 #include "../generated/openpbr_fuzz_ltc_values.inc"
 };
@@ -113,7 +113,9 @@ inline constexpr float openpbr_fuzz_ltc_data[OPENPBR_FUZZ_LTC_TOTAL_COUNT] = {
 #endif
 #elif defined(OPENPBR_FUZZ_LTC_MODE_BUFFER)
 #if defined(OPENPBR_LANGUAGE_TARGET_SLANG)
-[[vk::binding(OPENPBR_FUZZ_LTC_BINDING, 0)]] StructuredBuffer<float> openpbr_fuzz_ltc_data;
+[[vk::binding(OPENPBR_FUZZ_LTC_BINDING, 0)]] StructuredBuffer<float> openpbr_fuzz_ltc_data : register(OPENPBR_CONCATENATE(t, OPENPBR_FUZZ_LTC_BINDING));
+#elif defined(OPENPBR_LANGUAGE_TARGET_HLSL)
+StructuredBuffer<float> openpbr_fuzz_ltc_data : register(OPENPBR_CONCATENATE(t, OPENPBR_FUZZ_LTC_BINDING), OPENPBR_CONCATENATE(space, OPENPBR_HLSL_REGISTER_SPACE));
 #elif defined(OPENPBR_LANGUAGE_TARGET_GLSL)
 layout(std430, set = 0, binding = OPENPBR_FUZZ_LTC_BINDING) readonly buffer OpenPBR_FuzzLtcBuffer
 {

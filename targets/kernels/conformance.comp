@@ -7,10 +7,10 @@ layout(local_size_x = 64) in;
 #define OPENPBR_LANGUAGE_TARGET_GLSL 1
 #include "../../slang/openpbr.h"
 
-layout(std430, set = 0, binding = 1) readonly buffer ConformanceQueries { float conformance_queries[]; };
-layout(std430, set = 0, binding = 2) readonly buffer ConformanceMaterials { float conformance_materials[]; };
-layout(std430, set = 0, binding = 3) readonly buffer ConformanceParameters { uint conformance_parameters[]; };
-layout(std430, set = 0, binding = 4) writeonly buffer ConformanceResults { float conformance_results[]; };
+layout(std430, set = 0, binding = 2) readonly buffer ConformanceQueries { float conformance_queries[]; };
+layout(std430, set = 0, binding = 3) readonly buffer ConformanceMaterials { float conformance_materials[]; };
+layout(std430, set = 0, binding = 4) readonly buffer ConformanceParameters { uint conformance_parameters[]; };
+layout(std430, set = 0, binding = 5) writeonly buffer ConformanceResults { float conformance_results[]; };
 
 #define OPENPBR_QUERY_READ(index) conformance_queries[index]
 #define OPENPBR_MATERIAL_READ(index) conformance_materials[index]

@@ -1,0 +1,1106 @@
+// Implementation of the statistical test machinery; see bsdf_statistics.h.
+#include "tests/statistical/bsdf_statistics.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <iomanip>
+#include <limits>
+#include <map>
+#include <sstream>
+
+namespace openpbr::testing {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kTwoPi = 2.0 * kPi;
+
+// SplitMix64 finalizer: turns consecutive seeds into unrelated 64-bit values.
+std::uint64_t mix_seed(std::uint64_t x)
+{
+    x += 0x9e3779b97f4a7c15ull;
+    x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ull;
+    x = (x ^ (x >> 27)) * 0x94d049bb133111ebull;
+    return x ^ (x >> 31);
+}
+
+bool is_finite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+bool is_non_negative(const glm::vec3& v) { return v.x >= 0.0f && v.y >= 0.0f && v.z >= 0.0f; }
+double max_component(const glm::vec3& v) { return std::max({double(v.x), double(v.y), double(v.z)}); }
+
+// Splits [0, count) into chunks whose results do not depend on the number of threads.
+struct ChunkPlan
+{
+    std::uint64_t count;
+    std::uint64_t chunks;
+    std::uint64_t begin(std::uint64_t chunk) const { return count * chunk / chunks; }
+    std::uint64_t end(std::uint64_t chunk) const { return count * (chunk + 1) / chunks; }
+};
+
+ChunkPlan plan_chunks(std::uint64_t count)
+{
+    const std::uint64_t chunk_size = 8192;
+    return ChunkPlan{count, std::max<std::uint64_t>(1, std::min<std::uint64_t>(256, (count + chunk_size - 1) / chunk_size))};
+}
+
+template <class Function>
+void parallel_for_index(std::uint64_t count, const Function& function)
+{
+    tbb::parallel_for(tbb::blocked_range<std::uint64_t>(0, count, 1),
+                      [&](const tbb::blocked_range<std::uint64_t>& range) {
+                          for (std::uint64_t i = range.begin(); i != range.end(); ++i)
+                          {
+                              function(i);
+                          }
+                      });
+}
+
+// Calls visit(index, u) for the indices of one chunk with independent uniform triples; chunk
+// c of seed s always yields the same numbers.
+template <class Visit>
+void for_each_independent_sample(std::uint64_t seed, std::uint64_t chunk, std::uint64_t begin, std::uint64_t end,
+                                 const Visit& visit)
+{
+    Pcg32 rng(mix_seed(seed), chunk);
+    for (std::uint64_t i = begin; i < end; ++i)
+    {
+        const float u0 = rng.next_float();
+        const float u1 = rng.next_float();
+        const float u2 = rng.next_float();
+        visit(i, glm::vec3(u0, u1, u2));
+    }
+}
+
+std::string lobe_type_string(std::uint32_t lobe_type)
+{
+    std::ostringstream out;
+    out << "id " << (lobe_type >> OPENPBR_LOBE_ID_SHIFT) << " [";
+    const char* names[] = {"R", "T", "diffuse", "glossy", "delta"};
+    bool first = true;
+    for (int bit = 0; bit < 5; ++bit)
+    {
+        if ((lobe_type & (1u << bit)) != 0u)
+        {
+            out << (first ? "" : "|") << names[bit];
+            first = false;
+        }
+    }
+    out << "]";
+    return out.str();
+}
+
+}  // namespace
+
+// ------------------------------------------------------------------------------------------
+// Random numbers
+
+Pcg32::Pcg32(std::uint64_t seed, std::uint64_t stream) : state_(0), increment_((stream << 1u) | 1u)
+{
+    next_uint();
+    state_ += seed;
+    next_uint();
+}
+
+std::uint32_t Pcg32::next_uint()
+{
+    const std::uint64_t old_state = state_;
+    state_ = old_state * 6364136223846793005ull + increment_;
+    const std::uint32_t xorshifted = static_cast<std::uint32_t>(((old_state >> 18u) ^ old_state) >> 27u);
+    const std::uint32_t rotation = static_cast<std::uint32_t>(old_state >> 59u);
+    return (xorshifted >> rotation) | (xorshifted << ((32u - rotation) & 31u));
+}
+
+float Pcg32::next_float() { return static_cast<float>(next_uint() >> 8) * 0x1.0p-24f; }
+
+double Pcg32::next_double()
+{
+    const std::uint64_t high = next_uint() >> 5;  // 27 bits
+    const std::uint64_t low = next_uint() >> 6;   // 26 bits
+    return static_cast<double>((high << 26) | low) * 0x1.0p-53;
+}
+
+KroneckerSequence::KroneckerSequence(std::uint64_t seed) : shift_{0.0, 0.0, 0.0}
+{
+    Pcg32 rng(mix_seed(seed), 0x5eed);
+    for (double& s : shift_)
+    {
+        s = rng.next_double();
+    }
+}
+
+glm::vec3 KroneckerSequence::at(std::uint64_t index) const
+{
+    // g: the real root of g^4 = g + 1 (Newton from 1.2).
+    static const double g = [] {
+        double x = 1.2;
+        for (int i = 0; i < 50; ++i)
+        {
+            x -= (x * x * x * x - x - 1.0) / (4.0 * x * x * x - 1.0);
+        }
+        return x;
+    }();
+    static const double alpha[3] = {1.0 / g, 1.0 / (g * g), 1.0 / (g * g * g)};
+    glm::vec3 u;
+    for (int k = 0; k < 3; ++k)
+    {
+        // index * alpha exactly split into integer and fractional parts: index < 2^53 is
+        // exact in double, and fmod keeps only the fraction that matters.
+        const double product = std::fmod(static_cast<double>(index) * alpha[k], 1.0);
+        double x = shift_[k] + product;
+        x -= std::floor(x);
+        u[k] = to_unit_float(x);
+    }
+    return u;
+}
+
+float to_unit_float(double x)
+{
+    const float largest_below_one = 0x1.fffffep-1f;
+    const float f = static_cast<float>(x);
+    return f < 0.0f ? 0.0f : (f > largest_below_one ? largest_below_one : f);
+}
+
+std::uint64_t seed_from_name(const std::string& name)
+{
+    std::uint64_t hash = 0xcbf29ce484222325ull;
+    for (const char c : name)
+    {
+        hash = (hash ^ static_cast<unsigned char>(c)) * 0x100000001b3ull;
+    }
+    return hash;
+}
+
+// ------------------------------------------------------------------------------------------
+// Targets
+
+double delta_selection_probability(const OpenPBR_PreparedBsdf& bsdf)
+{
+    // Keep in sync with the delta lobes of openpbr_sample: every lobe that can return an
+    // OPENPBR_LOBE_TYPE_SPECULAR sample contributes its selection probability.
+    // Lobes that are never delta (diffuse, diffuse transmission, fuzz) do not appear.
+    double probability = bsdf.probability_pass_through;
+    probability += bsdf.coat.is_delta ? bsdf.probability_coat : 0.0f;
+    probability += bsdf.specular.is_delta ? bsdf.probability_specular : 0.0f;
+    probability += bsdf.metal.is_delta ? bsdf.probability_metal : 0.0f;
+    probability += bsdf.transmission.is_delta ? bsdf.probability_transmission : 0.0f;
+    probability += bsdf.thin_transmission.is_delta ? bsdf.probability_thin_transmission : 0.0f;
+    return probability;
+}
+
+SamplingTarget make_bsdf_target(const OpenPBR_PreparedBsdf& bsdf, const std::string& name)
+{
+    SamplingTarget target;
+    target.name = name;
+    target.frame = bsdf.basis;
+    target.delta_probability = delta_selection_probability(bsdf);
+    target.sample = [bsdf](const glm::vec3& u) {
+        const OpenPBR_BsdfSample s = openpbr_sample(bsdf, u);
+        DirectionSample result;
+        result.direction = s.direction;
+        result.weight = s.weight;
+        result.pdf = s.pdf;
+        result.lobe_type = s.lobe_type;
+        return result;
+    };
+    target.pdf = [bsdf](const glm::vec3& direction) { return static_cast<double>(openpbr_pdf(bsdf, direction)); };
+    target.eval = [bsdf](const glm::vec3& direction) { return openpbr_eval(bsdf, direction); };
+    return target;
+}
+
+// ------------------------------------------------------------------------------------------
+// Numerics
+
+namespace {
+
+// P(a, x) by its power series; converges quickly for x < a + 1.
+double gamma_p_series(double a, double x)
+{
+    double term = 1.0 / a;
+    double sum = term;
+    double denominator = a;
+    for (int n = 0; n < 100000; ++n)
+    {
+        denominator += 1.0;
+        term *= x / denominator;
+        sum += term;
+        if (std::fabs(term) < std::fabs(sum) * 1e-16)
+        {
+            break;
+        }
+    }
+    return sum * std::exp(-x + a * std::log(x) - std::lgamma(a));
+}
+
+// Q(a, x) by its continued fraction (modified Lentz); converges quickly for x >= a + 1.
+double gamma_q_continued_fraction(double a, double x)
+{
+    const double tiny = 1e-300;
+    double b = x + 1.0 - a;
+    double c = 1.0 / tiny;
+    double d = 1.0 / b;
+    double h = d;
+    for (int i = 1; i < 100000; ++i)
+    {
+        const double an = -static_cast<double>(i) * (static_cast<double>(i) - a);
+        b += 2.0;
+        d = an * d + b;
+        if (std::fabs(d) < tiny)
+        {
+            d = tiny;
+        }
+        c = b + an / c;
+        if (std::fabs(c) < tiny)
+        {
+            c = tiny;
+        }
+        d = 1.0 / d;
+        const double delta = d * c;
+        h *= delta;
+        if (std::fabs(delta - 1.0) < 1e-16)
+        {
+            break;
+        }
+    }
+    return std::exp(-x + a * std::log(x) - std::lgamma(a)) * h;
+}
+
+}  // namespace
+
+double regularized_gamma_p(double a, double x)
+{
+    if (!(a > 0.0) || std::isnan(x))
+    {
+        return std::numeric_limits<double>::quiet_NaN();
+    }
+    if (x <= 0.0)
+    {
+        return 0.0;
+    }
+    if (std::isinf(x))
+    {
+        return 1.0;
+    }
+    return x < a + 1.0 ? gamma_p_series(a, x) : 1.0 - gamma_q_continued_fraction(a, x);
+}
+
+double regularized_gamma_q(double a, double x)
+{
+    if (!(a > 0.0) || std::isnan(x))
+    {
+        return std::numeric_limits<double>::quiet_NaN();
+    }
+    if (x <= 0.0)
+    {
+        return 1.0;
+    }
+    if (std::isinf(x))
+    {
+        return 0.0;
+    }
+    return x < a + 1.0 ? 1.0 - gamma_p_series(a, x) : gamma_q_continued_fraction(a, x);
+}
+
+double chi_square_p_value(double statistic, int degrees_of_freedom)
+{
+    if (degrees_of_freedom <= 0)
+    {
+        return 1.0;
+    }
+    return regularized_gamma_q(0.5 * degrees_of_freedom, 0.5 * statistic);
+}
+
+double binomial_two_sided_p_value(std::uint64_t successes, std::uint64_t trials, double p)
+{
+    if (successes > trials || std::isnan(p))
+    {
+        return 0.0;
+    }
+    if (p <= 0.0)
+    {
+        return successes == 0 ? 1.0 : 0.0;
+    }
+    if (p >= 1.0)
+    {
+        return successes == trials ? 1.0 : 0.0;
+    }
+    const double n = static_cast<double>(trials);
+    const double k = static_cast<double>(successes);
+    const double mean = n * p;
+    const double variance = n * p * (1.0 - p);
+    if (variance >= 400.0)
+    {
+        // Normal approximation with continuity correction; skewness is below 0.05 here.
+        const double z = std::max(std::fabs(k - mean) - 0.5, 0.0) / std::sqrt(variance);
+        return std::erfc(z / std::sqrt(2.0));
+    }
+    // Exact: sum the pmf of every outcome no more likely than the observed one, over a window
+    // of +-(40 sd + 20) around the mean and the observation (the rest is below 1e-300).
+    const double log_p = std::log(p);
+    const double log_q = std::log1p(-p);
+    const double log_n_factorial = std::lgamma(n + 1.0);
+    const auto log_pmf = [&](double j) {
+        return log_n_factorial - std::lgamma(j + 1.0) - std::lgamma(n - j + 1.0) + j * log_p + (n - j) * log_q;
+    };
+    const double observed = log_pmf(k);
+    const double half_width = 40.0 * std::sqrt(variance) + 20.0;
+    const double low = std::max(0.0, std::floor(std::min(k, mean) - half_width));
+    const double high = std::min(n, std::ceil(std::max(k, mean) + half_width));
+    double sum = 0.0;
+    for (double j = low; j <= high; j += 1.0)
+    {
+        const double value = log_pmf(j);
+        if (value <= observed + 1e-7)
+        {
+            sum += std::exp(value);
+        }
+    }
+    return std::min(sum, 1.0);
+}
+
+double sidak_significance(double family_significance, int test_count)
+{
+    return -std::expm1(std::log1p(-family_significance) / std::max(test_count, 1));
+}
+
+void gauss_legendre(int order, std::vector<double>& nodes, std::vector<double>& weights)
+{
+    nodes.assign(static_cast<std::size_t>(order), 0.0);
+    weights.assign(static_cast<std::size_t>(order), 0.0);
+    for (int i = 0; i < order; ++i)
+    {
+        double x = std::cos(kPi * (i + 0.75) / (order + 0.5));  // close to the i-th root
+        double derivative = 1.0;
+        for (int iteration = 0; iteration < 100; ++iteration)
+        {
+            // P_order(x) and P_(order-1)(x) by the three-term recurrence.
+            double p_previous = 1.0;
+            double p = x;
+            for (int j = 2; j <= order; ++j)
+            {
+                const double p_next = ((2.0 * j - 1.0) * x * p - (j - 1.0) * p_previous) / j;
+                p_previous = p;
+                p = p_next;
+            }
+            if (order == 1)
+            {
+                p_previous = 1.0;
+                p = x;
+            }
+            derivative = order * (x * p - p_previous) / (x * x - 1.0);
+            const double step = p / derivative;
+            x -= step;
+            if (std::fabs(step) < 1e-15)
+            {
+                break;
+            }
+        }
+        nodes[static_cast<std::size_t>(i)] = x;
+        weights[static_cast<std::size_t>(i)] = 2.0 / ((1.0 - x * x) * derivative * derivative);
+    }
+}
+
+// ------------------------------------------------------------------------------------------
+// Grid integration
+
+glm::vec3 direction_in_basis(const OpenPBR_Basis& basis, double cos_theta, double phi)
+{
+    const double z = std::clamp(cos_theta, -1.0, 1.0);
+    const double r = std::sqrt(std::max(0.0, 1.0 - z * z));
+    const double x = r * std::cos(phi);
+    const double y = r * std::sin(phi);
+    const glm::dvec3 t(basis.tangent);
+    const glm::dvec3 b(basis.bitangent);
+    const glm::dvec3 n(basis.normal);
+    return glm::vec3(t * x + b * y + n * z);
+}
+
+int grid_cell_of(const SamplingTarget& target, const SphereGridOptions& grid, const glm::vec3& direction)
+{
+    const glm::dvec3 d(direction);
+    const double x = glm::dot(d, glm::dvec3(target.frame.tangent));
+    const double y = glm::dot(d, glm::dvec3(target.frame.bitangent));
+    const double z = glm::dot(d, glm::dvec3(target.frame.normal));
+    const double length = std::sqrt(x * x + y * y + z * z);
+    const double cos_theta = std::clamp(z / length, -1.0, 1.0);
+    double phi = std::atan2(y, x);
+    if (phi < 0.0)
+    {
+        phi += kTwoPi;
+    }
+    const int i_theta = std::clamp(static_cast<int>((cos_theta + 1.0) * 0.5 * grid.cos_theta_bins), 0, grid.cos_theta_bins - 1);
+    const int i_phi = std::clamp(static_cast<int>(phi / kTwoPi * grid.phi_bins), 0, grid.phi_bins - 1);
+    return i_theta * grid.phi_bins + i_phi;
+}
+
+namespace {
+
+struct CellIntegrator
+{
+    const SamplingTarget& target;
+    const SphereGridOptions& grid;
+    std::vector<double> nodes;
+    std::vector<double> weights;
+
+    // Fixed-order Gauss-Legendre over [z0, z1] x [p0, p1]; dw = dz dphi.
+    double gauss(double z0, double z1, double p0, double p1) const
+    {
+        const double z_mid = 0.5 * (z0 + z1);
+        const double z_half = 0.5 * (z1 - z0);
+        const double p_mid = 0.5 * (p0 + p1);
+        const double p_half = 0.5 * (p1 - p0);
+        double sum = 0.0;
+        for (std::size_t i = 0; i < nodes.size(); ++i)
+        {
+            const double z = z_mid + z_half * nodes[i];
+            double row = 0.0;
+            for (std::size_t j = 0; j < nodes.size(); ++j)
+            {
+                const double phi = p_mid + p_half * nodes[j];
+                row += weights[j] * target.pdf(direction_in_basis(target.frame, z, phi));
+            }
+            sum += weights[i] * row;
+        }
+        return sum * z_half * p_half;
+    }
+
+    double adaptive(double z0, double z1, double p0, double p1, double coarse, int depth) const
+    {
+        const double zm = 0.5 * (z0 + z1);
+        const double pm = 0.5 * (p0 + p1);
+        const double parts[4] = {gauss(z0, zm, p0, pm), gauss(z0, zm, pm, p1), gauss(zm, z1, p0, pm), gauss(zm, z1, pm, p1)};
+        const double fine = parts[0] + parts[1] + parts[2] + parts[3];
+        if (depth >= grid.max_depth ||
+            std::fabs(fine - coarse) <= std::max(grid.relative_tolerance * std::fabs(fine), grid.absolute_tolerance) ||
+            !std::isfinite(fine))
+        {
+            return fine;
+        }
+        return adaptive(z0, zm, p0, pm, parts[0], depth + 1) + adaptive(z0, zm, pm, p1, parts[1], depth + 1) +
+               adaptive(zm, z1, p0, pm, parts[2], depth + 1) + adaptive(zm, z1, pm, p1, parts[3], depth + 1);
+    }
+};
+
+}  // namespace
+
+std::vector<double> integrate_pdf_over_grid(const SamplingTarget& target, const SphereGridOptions& grid)
+{
+    CellIntegrator integrator{target, grid, {}, {}};
+    gauss_legendre(grid.quadrature_order, integrator.nodes, integrator.weights);
+    std::vector<double> cells(static_cast<std::size_t>(grid.cos_theta_bins * grid.phi_bins), 0.0);
+    const double dz = 2.0 / grid.cos_theta_bins;
+    const double dphi = kTwoPi / grid.phi_bins;
+    parallel_for_index(cells.size(), [&](std::uint64_t index) {
+        const int i_theta = static_cast<int>(index) / grid.phi_bins;
+        const int i_phi = static_cast<int>(index) % grid.phi_bins;
+        const double z0 = -1.0 + i_theta * dz;
+        const double z1 = i_theta + 1 == grid.cos_theta_bins ? 1.0 : z0 + dz;
+        const double p0 = i_phi * dphi;
+        const double p1 = (i_phi + 1) * dphi;
+        const double coarse = integrator.gauss(z0, z1, p0, p1);
+        cells[index] = integrator.adaptive(z0, z1, p0, p1, coarse, 1);
+    });
+    return cells;
+}
+
+// ------------------------------------------------------------------------------------------
+// Chi-square
+
+namespace {
+
+struct SampleTally
+{
+    std::vector<std::uint64_t> cells;
+    std::map<std::uint32_t, DeltaAtom> atoms;
+    std::uint64_t continuous = 0;
+    std::uint64_t invalid = 0;
+    std::uint64_t nonfinite = 0;
+};
+
+bool is_unit_direction(const glm::vec3& d)
+{
+    return is_finite(d) && std::fabs(glm::dot(glm::dvec3(d), glm::dvec3(d)) - 1.0) < 1e-3;
+}
+
+SampleTally tally_samples(const SamplingTarget& target, const SphereGridOptions& grid, std::uint64_t sample_count,
+                          std::uint64_t seed)
+{
+    const ChunkPlan plan = plan_chunks(sample_count);
+    std::vector<SampleTally> tallies(plan.chunks);
+    parallel_for_index(plan.chunks, [&](std::uint64_t chunk) {
+        SampleTally& tally = tallies[chunk];
+        tally.cells.assign(static_cast<std::size_t>(grid.cos_theta_bins * grid.phi_bins), 0);
+        for_each_independent_sample(seed, chunk, plan.begin(chunk), plan.end(chunk), [&](std::uint64_t, const glm::vec3& u) {
+            const DirectionSample s = target.sample(u);
+            if (!s.is_valid())
+            {
+                ++tally.invalid;
+                return;
+            }
+            if (s.is_delta())
+            {
+                // One atom per delta lobe (its id): a lobe with several branches (reflection
+                // and refraction of a smooth dielectric) reports its selection probability as
+                // the pdf of each branch, so only the lobe as a whole can be checked.
+                DeltaAtom& atom = tally.atoms[s.lobe_type >> OPENPBR_LOBE_ID_SHIFT];
+                if (atom.count == 0)
+                {
+                    atom.lobe_type = s.lobe_type;
+                    atom.reported_pdf_min = s.pdf;
+                    atom.reported_pdf_max = s.pdf;
+                }
+                ++atom.count;
+                atom.reported_pdf_min = std::min(atom.reported_pdf_min, s.pdf);
+                atom.reported_pdf_max = std::max(atom.reported_pdf_max, s.pdf);
+                atom.reported_pdf_mean += s.pdf;  // a sum until merged
+                return;
+            }
+            if (!is_unit_direction(s.direction))
+            {
+                ++tally.nonfinite;
+                return;
+            }
+            ++tally.continuous;
+            ++tally.cells[static_cast<std::size_t>(grid_cell_of(target, grid, s.direction))];
+        });
+    });
+    SampleTally total;
+    total.cells.assign(static_cast<std::size_t>(grid.cos_theta_bins * grid.phi_bins), 0);
+    for (const SampleTally& tally : tallies)
+    {
+        for (std::size_t i = 0; i < total.cells.size(); ++i)
+        {
+            total.cells[i] += tally.cells[i];
+        }
+        for (const auto& [type, atom] : tally.atoms)
+        {
+            DeltaAtom& merged = total.atoms[type];
+            if (merged.count == 0)
+            {
+                merged = atom;
+            }
+            else
+            {
+                merged.count += atom.count;
+                merged.reported_pdf_min = std::min(merged.reported_pdf_min, atom.reported_pdf_min);
+                merged.reported_pdf_max = std::max(merged.reported_pdf_max, atom.reported_pdf_max);
+                merged.reported_pdf_mean += atom.reported_pdf_mean;
+            }
+        }
+        total.continuous += tally.continuous;
+        total.invalid += tally.invalid;
+        total.nonfinite += tally.nonfinite;
+    }
+    for (auto& [type, atom] : total.atoms)
+    {
+        atom.reported_pdf_mean /= static_cast<double>(atom.count);
+    }
+    return total;
+}
+
+struct Cell
+{
+    double observed;
+    double expected;
+    std::string label;
+};
+
+}  // namespace
+
+ChiSquareResult run_chi_square_test(const SamplingTarget& target, const ChiSquareOptions& options)
+{
+    const SphereGridOptions& grid = options.grid;
+    ChiSquareResult result;
+    result.sample_count = options.sample_count;
+    const double n = static_cast<double>(options.sample_count);
+
+    const std::vector<double> probabilities = integrate_pdf_over_grid(target, grid);
+    const SampleTally tally = tally_samples(target, grid, options.sample_count, options.seed);
+
+    result.continuous_count = tally.continuous;
+    result.invalid_count = tally.invalid;
+    result.nonfinite_count = tally.nonfinite;
+    result.delta_probability = target.delta_probability;
+    for (const auto& [type, atom] : tally.atoms)
+    {
+        result.atoms.push_back(atom);
+        result.delta_count += atom.count;
+        result.delta_reported_sum += atom.reported_pdf_mean;
+        const double spread = atom.reported_pdf_max - atom.reported_pdf_min;
+        if (!(spread <= options.delta_pdf_relative_tolerance * atom.reported_pdf_max) || !(atom.reported_pdf_min > 0.0))
+        {
+            result.delta_pdfs_consistent = false;
+        }
+    }
+    // Atoms never sampled cannot report; the binomial test below catches a missing delta lobe.
+    if (!result.atoms.empty() &&
+        !(std::fabs(result.delta_reported_sum - result.delta_probability) <=
+          options.delta_pdf_relative_tolerance * std::max(result.delta_probability, 1e-3)))
+    {
+        result.delta_pdfs_consistent = false;
+    }
+    for (double p : probabilities)
+    {
+        result.pdf_integral += p;
+    }
+
+    // Cells: the grid, one atom per delta lobe type, and "no sample".
+    const double dz = 2.0 / grid.cos_theta_bins;
+    const double dphi = 360.0 / grid.phi_bins;
+    std::vector<Cell> cells;
+    cells.reserve(probabilities.size() + result.atoms.size() + 1);
+    result.observed.resize(probabilities.size());
+    result.expected.resize(probabilities.size());
+    for (std::size_t i = 0; i < probabilities.size(); ++i)
+    {
+        const int i_theta = static_cast<int>(i) / grid.phi_bins;
+        const int i_phi = static_cast<int>(i) % grid.phi_bins;
+        std::ostringstream label;
+        label << std::setprecision(4) << "cos in [" << -1.0 + i_theta * dz << ", " << -1.0 + (i_theta + 1) * dz
+              << "), phi in [" << i_phi * dphi << ", " << (i_phi + 1) * dphi << ") deg";
+        result.observed[i] = static_cast<double>(tally.cells[i]);
+        result.expected[i] = n * probabilities[i];
+        cells.push_back({result.observed[i], result.expected[i], label.str()});
+    }
+    for (const DeltaAtom& atom : result.atoms)
+    {
+        cells.push_back({static_cast<double>(atom.count), n * atom.reported_pdf_mean, "delta " + lobe_type_string(atom.lobe_type)});
+    }
+    const double no_sample_probability = std::max(0.0, 1.0 - result.pdf_integral - result.delta_reported_sum);
+    cells.push_back({static_cast<double>(tally.invalid + tally.nonfinite), n * no_sample_probability, "no sample"});
+
+    // PBRT-style pooling: every cell expecting fewer than min_expected_count goes into one
+    // pool, and the pool takes the next-smallest cells until it expects enough itself.
+    std::vector<std::size_t> order(cells.size());
+    for (std::size_t i = 0; i < order.size(); ++i)
+    {
+        order[i] = i;
+    }
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return cells[a].expected < cells[b].expected; });
+    Cell pool{0.0, 0.0, "pool of small cells"};
+    std::size_t first_unpooled = 0;
+    while (first_unpooled < order.size() &&
+           (cells[order[first_unpooled]].expected < options.min_expected_count ||
+            (pool.expected > 0.0 && pool.expected < options.min_expected_count)))
+    {
+        pool.observed += cells[order[first_unpooled]].observed;
+        pool.expected += cells[order[first_unpooled]].expected;
+        ++first_unpooled;
+        ++result.pooled_cell_count;
+    }
+    // Terms of the statistic, with their labels for the report.
+    std::vector<std::pair<double, std::size_t>> contributions;  // (term, cell index), pool = npos
+    double statistic = 0.0;
+    int terms = 0;
+    const auto add_term = [&](const Cell& cell, std::size_t index) {
+        if (cell.expected <= 0.0)
+        {
+            if (cell.observed > 0.0)
+            {
+                statistic = std::numeric_limits<double>::infinity();
+                contributions.push_back({statistic, index});
+            }
+            return;
+        }
+        const double difference = cell.observed - cell.expected;
+        const double term = difference * difference / cell.expected;
+        statistic += term;
+        ++terms;
+        contributions.push_back({term, index});
+    };
+    if (result.pooled_cell_count > 0)
+    {
+        add_term(pool, static_cast<std::size_t>(-1));
+    }
+    for (std::size_t i = first_unpooled; i < order.size(); ++i)
+    {
+        add_term(cells[order[i]], order[i]);
+    }
+    result.statistic = statistic;
+    result.degrees_of_freedom = terms - 1;
+    result.p_value = std::isinf(statistic) ? 0.0 : chi_square_p_value(statistic, result.degrees_of_freedom);
+    if (std::isnan(statistic))
+    {
+        result.p_value = std::numeric_limits<double>::quiet_NaN();
+    }
+
+    result.delta_p_value = binomial_two_sided_p_value(result.delta_count, options.sample_count, result.delta_probability);
+    result.continuous_p_value = binomial_two_sided_p_value(result.continuous_count, options.sample_count,
+                                                           std::clamp(result.pdf_integral, 0.0, 1.0));
+
+    std::ostringstream report;
+    report << std::setprecision(6) << "target '" << target.name << "': " << options.sample_count << " samples, "
+           << result.continuous_count << " continuous, " << result.delta_count << " delta, " << result.invalid_count
+           << " no sample, " << result.nonfinite_count << " with a bad direction\n"
+           << "  pdf integral " << result.pdf_integral << " vs continuous fraction "
+           << result.continuous_count / n << " (p = " << result.continuous_p_value << ")\n"
+           << "  delta probability " << result.delta_probability << " vs fraction " << result.delta_count / n
+           << " (p = " << result.delta_p_value << "), reported sum " << result.delta_reported_sum
+           << (result.delta_pdfs_consistent ? "" : " [INCONSISTENT delta pdfs]") << "\n";
+    for (const DeltaAtom& atom : result.atoms)
+    {
+        report << "  atom " << lobe_type_string(atom.lobe_type) << ": " << atom.count << " samples, reported pdf in ["
+               << atom.reported_pdf_min << ", " << atom.reported_pdf_max << "]\n";
+    }
+    report << "  chi2 = " << result.statistic << ", dof = " << result.degrees_of_freedom << ", p = " << result.p_value
+           << " (" << result.pooled_cell_count << " cells pooled)\n";
+    std::sort(contributions.begin(), contributions.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+    for (std::size_t i = 0; i < std::min<std::size_t>(6, contributions.size()); ++i)
+    {
+        const Cell& cell = contributions[i].second == static_cast<std::size_t>(-1) ? pool : cells[contributions[i].second];
+        report << "    worst: " << cell.label << ": observed " << cell.observed << ", expected " << cell.expected
+               << ", term " << contributions[i].first << "\n";
+    }
+    result.report = report.str();
+    return result;
+}
+
+// ------------------------------------------------------------------------------------------
+// Pdf integral
+
+PdfIntegralResult check_pdf_integral(const SamplingTarget& target, std::uint64_t sample_count, std::uint64_t seed,
+                                     const SphereGridOptions& grid)
+{
+    PdfIntegralResult result;
+    result.sample_count = sample_count;
+    for (double p : integrate_pdf_over_grid(target, grid))
+    {
+        result.pdf_integral += p;
+    }
+    const ChunkPlan plan = plan_chunks(sample_count);
+    std::vector<std::uint64_t> counts(plan.chunks, 0);
+    parallel_for_index(plan.chunks, [&](std::uint64_t chunk) {
+        for_each_independent_sample(seed, chunk, plan.begin(chunk), plan.end(chunk), [&](std::uint64_t, const glm::vec3& u) {
+            const DirectionSample s = target.sample(u);
+            if (s.is_valid() && !s.is_delta() && s.pdf > 0.0)
+            {
+                ++counts[chunk];
+            }
+        });
+    });
+    std::uint64_t valid = 0;
+    for (std::uint64_t c : counts)
+    {
+        valid += c;
+    }
+    const double n = static_cast<double>(sample_count);
+    result.valid_fraction = valid / n;
+    result.standard_error = std::sqrt(std::max(result.valid_fraction * (1.0 - result.valid_fraction), 1.0 / n) / n);
+    result.p_value = binomial_two_sided_p_value(valid, sample_count, std::clamp(result.pdf_integral, 0.0, 1.0));
+    if (result.pdf_integral > 1.0 + 1e-6)
+    {
+        result.p_value = 0.0;  // a pdf cannot integrate above 1
+    }
+    return result;
+}
+
+// ------------------------------------------------------------------------------------------
+// Per-sample consistency
+
+ConsistencyResult check_sample_consistency(const SamplingTarget& target, const ConsistencyOptions& options)
+{
+    const ChunkPlan plan = plan_chunks(options.sample_count);
+    std::vector<ConsistencyResult> partial(plan.chunks);
+    const KroneckerSequence sequence(options.seed);
+    parallel_for_index(plan.chunks, [&](std::uint64_t chunk) {
+        ConsistencyResult& r = partial[chunk];
+        const auto fail = [&](std::uint64_t& counter, const std::string& what, const glm::vec3& u, const DirectionSample& s,
+                              double pdf, const OpenPBR_DiffuseSpecular* eval) {
+            ++counter;
+            if (r.first_failure.empty())
+            {
+                std::ostringstream out;
+                out << std::setprecision(9) << what << ": u = " << to_string(u) << ", lobe " << lobe_type_string(s.lobe_type)
+                    << ", direction " << to_string(s.direction) << ", returned pdf " << s.pdf << ", pdf() " << pdf
+                    << ", weight diffuse " << to_string(s.weight.diffuse) << " specular " << to_string(s.weight.specular);
+                if (eval != nullptr)
+                {
+                    out << ", eval diffuse " << to_string(eval->diffuse) << " specular " << to_string(eval->specular);
+                }
+                r.first_failure = out.str();
+            }
+        };
+        const auto visit = [&](std::uint64_t, const glm::vec3& u) {
+            ++r.sample_count;
+            const DirectionSample s = target.sample(u);
+            if (!s.is_valid())
+            {
+                if (s.pdf != 0.0 || s.weight.diffuse != glm::vec3(0.0f) || s.weight.specular != glm::vec3(0.0f))
+                {
+                    fail(r.invalid_value_count, "no sample (lobe type NONE) but pdf or weight != 0", u, s, 0.0, nullptr);
+                }
+                return;
+            }
+            if (!(s.pdf > 0.0) || !std::isfinite(s.pdf) || !is_finite(s.weight.diffuse) || !is_finite(s.weight.specular) ||
+                !is_non_negative(s.weight.diffuse) || !is_non_negative(s.weight.specular) || !is_unit_direction(s.direction))
+            {
+                fail(r.invalid_value_count, "invalid sample (pdf <= 0, non-finite/negative weight or bad direction)", u, s, 0.0,
+                     nullptr);
+                return;
+            }
+            if (s.is_delta())
+            {
+                return;
+            }
+            const double pdf = target.pdf(s.direction);
+            const OpenPBR_DiffuseSpecular value = target.eval ? target.eval(s.direction)
+                                                              : OpenPBR_DiffuseSpecular{glm::vec3(0.0f), glm::vec3(0.0f)};
+            if (!std::isfinite(pdf) || pdf < 0.0 || !is_finite(value.diffuse) || !is_finite(value.specular) ||
+                !is_non_negative(value.diffuse) || !is_non_negative(value.specular))
+            {
+                fail(r.invalid_value_count, "pdf()/eval() non-finite or negative at a sampled direction", u, s, pdf, &value);
+                return;
+            }
+            if (std::max(s.pdf, pdf) < options.min_pdf)
+            {
+                return;
+            }
+            ++r.checked_count;
+            const double pdf_error = std::fabs(pdf - s.pdf) / std::max(pdf, s.pdf);
+            r.max_pdf_relative_error = std::max(r.max_pdf_relative_error, pdf_error);
+            if (!(pdf_error <= options.relative_tolerance))
+            {
+                fail(r.pdf_mismatch_count, "returned pdf != pdf()", u, s, pdf, &value);
+            }
+            if (!target.eval || !(pdf > 0.0))
+            {
+                return;
+            }
+            const glm::vec3 got[2] = {s.weight.diffuse, s.weight.specular};
+            const glm::vec3 values[2] = {value.diffuse, value.specular};
+            double scale = 0.0;
+            for (int part = 0; part < 2; ++part)
+            {
+                scale = std::max({scale, max_component(got[part]), max_component(values[part]) / pdf});
+            }
+            if (std::max(max_component(value.diffuse), max_component(value.specular)) < options.min_value)
+            {
+                return;
+            }
+            double weight_error = 0.0;
+            for (int part = 0; part < 2; ++part)
+            {
+                for (int c = 0; c < 3; ++c)
+                {
+                    weight_error = std::max(weight_error, std::fabs(double(got[part][c]) - double(values[part][c]) / pdf) / scale);
+                }
+            }
+            r.max_weight_relative_error = std::max(r.max_weight_relative_error, weight_error);
+            if (!(weight_error <= options.relative_tolerance))
+            {
+                fail(r.weight_mismatch_count, "weight != eval / pdf", u, s, pdf, &value);
+            }
+        };
+        if (options.sampler == SamplerKind::independent)
+        {
+            for_each_independent_sample(options.seed, chunk, plan.begin(chunk), plan.end(chunk), visit);
+        }
+        else
+        {
+            for (std::uint64_t i = plan.begin(chunk); i < plan.end(chunk); ++i)
+            {
+                visit(i, sequence.at(i));
+            }
+        }
+    });
+    ConsistencyResult total;
+    for (const ConsistencyResult& r : partial)
+    {
+        total.sample_count += r.sample_count;
+        total.checked_count += r.checked_count;
+        total.weight_mismatch_count += r.weight_mismatch_count;
+        total.pdf_mismatch_count += r.pdf_mismatch_count;
+        total.invalid_value_count += r.invalid_value_count;
+        total.max_weight_relative_error = std::max(total.max_weight_relative_error, r.max_weight_relative_error);
+        total.max_pdf_relative_error = std::max(total.max_pdf_relative_error, r.max_pdf_relative_error);
+        if (total.first_failure.empty())
+        {
+            total.first_failure = r.first_failure;
+        }
+    }
+    return total;
+}
+
+// ------------------------------------------------------------------------------------------
+// Albedo
+
+AlbedoEstimate estimate_albedo(const SamplingTarget& target, std::uint64_t sample_count, std::uint64_t seed,
+                               SamplerKind sampler, int replicas)
+{
+    AlbedoEstimate estimate;
+    estimate.sample_count = sample_count;
+    struct Sums
+    {
+        glm::dvec3 sum{0.0};
+        glm::dvec3 sum_squares{0.0};
+        glm::dvec3 max{0.0};
+        std::uint64_t count = 0;
+    };
+    const auto accumulate = [&](Sums& sums, const glm::vec3& u) {
+        const DirectionSample s = target.sample(u);
+        const glm::dvec3 w = s.is_valid() ? glm::dvec3(s.total_weight()) : glm::dvec3(0.0);
+        sums.sum += w;
+        sums.sum_squares += w * w;
+        sums.max = glm::max(sums.max, w);
+        ++sums.count;
+    };
+    if (sampler == SamplerKind::independent)
+    {
+        const ChunkPlan plan = plan_chunks(sample_count);
+        std::vector<Sums> partial(plan.chunks);
+        parallel_for_index(plan.chunks, [&](std::uint64_t chunk) {
+            for_each_independent_sample(seed, chunk, plan.begin(chunk), plan.end(chunk),
+                                        [&](std::uint64_t, const glm::vec3& u) { accumulate(partial[chunk], u); });
+        });
+        Sums total;
+        for (const Sums& s : partial)
+        {
+            total.sum += s.sum;
+            total.sum_squares += s.sum_squares;
+            total.max = glm::max(total.max, s.max);
+        }
+        const double n = static_cast<double>(sample_count);
+        estimate.mean = total.sum / n;
+        const glm::dvec3 variance = glm::max(total.sum_squares / n - estimate.mean * estimate.mean, glm::dvec3(0.0));
+        estimate.standard_error = glm::sqrt(variance / std::max(n - 1.0, 1.0));
+        estimate.max_weight = total.max;
+        return estimate;
+    }
+    // Randomized QMC: independent replicas, each a shifted Kronecker sequence.
+    const int r = std::max(replicas, 2);
+    const std::uint64_t per_replica = std::max<std::uint64_t>(1, sample_count / static_cast<std::uint64_t>(r));
+    std::vector<Sums> partial(static_cast<std::size_t>(r));
+    parallel_for_index(static_cast<std::uint64_t>(r), [&](std::uint64_t replica) {
+        const KroneckerSequence sequence(mix_seed(seed) ^ (replica * 0x9e3779b97f4a7c15ull));
+        for (std::uint64_t i = 0; i < per_replica; ++i)
+        {
+            accumulate(partial[replica], sequence.at(i));
+        }
+    });
+    glm::dvec3 sum_of_means(0.0);
+    glm::dvec3 sum_of_squared_means(0.0);
+    for (const Sums& s : partial)
+    {
+        const glm::dvec3 mean = s.sum / static_cast<double>(s.count);
+        sum_of_means += mean;
+        sum_of_squared_means += mean * mean;
+        estimate.max_weight = glm::max(estimate.max_weight, s.max);
+    }
+    estimate.mean = sum_of_means / double(r);
+    const glm::dvec3 variance = glm::max(sum_of_squared_means / double(r) - estimate.mean * estimate.mean, glm::dvec3(0.0)) *
+                                (double(r) / (r - 1.0));
+    estimate.standard_error = glm::sqrt(variance / double(r));
+    estimate.sample_count = per_replica * static_cast<std::uint64_t>(r);
+    return estimate;
+}
+
+// ------------------------------------------------------------------------------------------
+// Reciprocity
+
+ReciprocityResult check_reciprocity(const LobeFunction& f, std::uint64_t pair_count, std::uint64_t seed,
+                                    const ReciprocityOptions& options)
+{
+    ReciprocityResult result;
+    result.pair_count = pair_count;
+    Pcg32 rng(mix_seed(seed), 11);
+    const auto random_direction = [&](bool full_sphere) {
+        const double z = full_sphere ? 2.0 * rng.next_double() - 1.0 : rng.next_double();
+        const double phi = kTwoPi * rng.next_double();
+        const double r = std::sqrt(std::max(0.0, 1.0 - z * z));
+        return glm::dvec3(r * std::cos(phi), r * std::sin(phi), z);
+    };
+    // f(view, light) / |cos light| for both orders.
+    const auto both_orders = [&](const glm::vec3& wo, const glm::vec3& wi, glm::dvec3& forward, glm::dvec3& backward) {
+        forward = glm::dvec3(f(wo, wi)) / std::fabs(double(wi.z));
+        backward = glm::dvec3(f(wi, wo)) / std::fabs(double(wo.z));
+    };
+    for (std::uint64_t i = 0; i < pair_count; ++i)
+    {
+        const glm::dvec3 wo_d = random_direction(false);
+        const glm::dvec3 wi_d = random_direction(options.both_sides);
+        const glm::vec3 wo(wo_d);
+        const glm::vec3 wi(wi_d);
+        if (std::fabs(wo.z) < 1e-4f || std::fabs(wi.z) < 1e-4f)
+        {
+            continue;
+        }
+        glm::dvec3 forward, backward;
+        both_orders(wo, wi, forward, backward);
+        // Sensitivity: the largest change of either order when both directions move by
+        // about options.direction_precision in random directions.
+        glm::dvec3 sensitivity(0.0);
+        for (int k = 0; k < 8; ++k)
+        {
+            const glm::vec3 wo_p(glm::normalize(wo_d + options.direction_precision * random_direction(true)));
+            const glm::vec3 wi_p(glm::normalize(wi_d + options.direction_precision * random_direction(true)));
+            if (wo_p.z * wo.z <= 0.0f || wi_p.z * wi.z <= 0.0f)
+            {
+                continue;
+            }
+            glm::dvec3 forward_p, backward_p;
+            both_orders(wo_p, wi_p, forward_p, backward_p);
+            sensitivity = glm::max(sensitivity, glm::max(glm::abs(forward_p - forward), glm::abs(backward_p - backward)));
+        }
+        for (int c = 0; c < 3; ++c)
+        {
+            const double larger = std::max(std::fabs(forward[c]), std::fabs(backward[c]));
+            if (!(larger >= options.min_value) && std::isfinite(larger))
+            {
+                continue;
+            }
+            ++result.checked_count;
+            const double difference = std::fabs(forward[c] - backward[c]);
+            const double allowed =
+                options.relative_tolerance * larger + sensitivity[c];
+            const double relative_error = difference / larger;
+            result.max_relative_error = std::max(result.max_relative_error,
+                                                 std::isnan(relative_error) ? std::numeric_limits<double>::infinity() : relative_error);
+            const double excess = difference / allowed;
+            if (!(difference <= allowed))
+            {
+                ++result.failure_count;
+            }
+            if (!(excess <= result.max_excess))
+            {
+                result.max_excess = std::isnan(excess) ? std::numeric_limits<double>::infinity() : excess;
+                std::ostringstream out;
+                out << std::setprecision(9) << "wo = " << to_string(wo) << ", wi = " << to_string(wi) << ", channel " << c
+                    << ": f(wo, wi) / |cos wi| = " << forward[c] << ", f(wi, wo) / |cos wo| = " << backward[c]
+                    << ", allowed difference " << allowed;
+                result.worst = out.str();
+            }
+        }
+    }
+    return result;
+}
+
+// ------------------------------------------------------------------------------------------
+// Helpers
+
+std::string to_string(const glm::vec3& v)
+{
+    std::ostringstream out;
+    out << std::setprecision(7) << "(" << v.x << ", " << v.y << ", " << v.z << ")";
+    return out.str();
+}
+
+std::string describe_inputs(const OpenPBR_ResolvedInputs& i)
+{
+    std::ostringstream out;
+    out << std::setprecision(7) << "base_weight " << i.base_weight << ", base_color " << to_string(i.base_color)
+        << ", base_diffuse_roughness " << i.base_diffuse_roughness << ", base_metalness " << i.base_metalness
+        << ", specular_weight " << i.specular_weight << ", specular_color " << to_string(i.specular_color)
+        << ", specular_roughness " << i.specular_roughness << ", specular_roughness_anisotropy "
+        << i.specular_roughness_anisotropy << ", specular_ior " << i.specular_ior << ", transmission_weight "
+        << i.transmission_weight << ", subsurface_weight " << i.subsurface_weight << ", fuzz_weight " << i.fuzz_weight
+        << ", coat_weight " << i.coat_weight << ", thin_film_weight " << i.thin_film_weight << ", geometry_opacity "
+        << i.geometry_opacity << ", thin_walled " << i.geometry_thin_walled << ", normal "
+        << to_string(i.geometry_basis.normal) << ", tangent " << to_string(i.geometry_basis.tangent) << ", bitangent "
+        << to_string(i.geometry_basis.bitangent) << ", anisotropy rotation (" << i.specular_anisotropy_rotation.x << ", "
+        << i.specular_anisotropy_rotation.y << ")";
+    return out.str();
+}
+
+}  // namespace openpbr::testing

@@ -1,0 +1,859 @@
+// Statistical tests of the OpenPBR BSDF: sampling against pdf (chi-square over the full
+// sphere), pdf normalization, weight == eval / pdf, white furnace and per-lobe reciprocity.
+//
+// Data-driven: a new material configuration is one entry of material_configs() (or of
+// furnace_configs()); a new lobe is one entry of reciprocity_cases(). Every configuration is
+// tested at each view cosine of kViewCosines, on the sides it lists (outside: view above the
+// geometric normal; inside: below it) and for each IOR variant (e.g. eta and 1/eta once
+// transmission is implemented).
+#include "tests/statistical/bsdf_statistics.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace {
+
+using namespace openpbr;
+using namespace openpbr::testing;
+
+// ------------------------------------------------------------------------------------------
+// Configuration table
+
+enum class Side
+{
+    outside,  // view on the side the geometric normal points to
+    inside    // view below the geometric normal (a ray leaving the object / back face)
+};
+
+struct MaterialConfig
+{
+    std::string name;
+    std::function<OpenPBR_ResolvedInputs()> make_inputs;
+    std::vector<Side> sides = {Side::outside};
+    // specular_ior values to test; empty: the value make_inputs sets. For transmission, e.g.
+    // {1.5f, 1.0f / 1.5f} to test entering and leaving a denser medium.
+    std::vector<float> ior_variants = {};
+};
+
+// A tilted, non-axis-aligned geometry frame: exercises the world <-> local transforms.
+OpenPBR_Basis tilted_basis()
+{
+    OpenPBR_Basis basis;
+    basis.normal = glm::normalize(glm::vec3(0.3f, -0.2f, 1.0f));
+    basis.tangent = glm::vec3(1.0f, 0.5f, 0.0f);  // not orthogonal: prepare orthonormalizes it
+    basis.bitangent = glm::cross(basis.normal, basis.tangent);
+    return basis;
+}
+
+OpenPBR_ResolvedInputs defaults() { return openpbr_make_default_resolved_inputs(); }
+
+const std::vector<MaterialConfig>& material_configs()
+{
+    static const std::vector<MaterialConfig> configs = {
+        {"lambert",
+         [] {
+             OpenPBR_ResolvedInputs i = defaults();
+             i.specular_weight = 0.0f;
+             return i;
+         }},
+        {"eon_rough_diffuse",
+         [] {
+             OpenPBR_ResolvedInputs i = defaults();
+             i.specular_weight = 0.0f;
+             i.base_diffuse_roughness = 1.0f;
+             return i;
+         }},
+        {"default_material", [] { return defaults(); }, {Side::outside, Side::inside}},
+        {"rough_dielectric_specular",
+         [] {
+             OpenPBR_ResolvedInputs i = defaults();
+             i.base_weight = 0.0f;
+             return i;
+         }},
+        {"metal_rough",
+         [] {
+             OpenPBR_ResolvedInputs i = defaults();
+             i.base_metalness = 1.0f;
+             i.base_color = glm::vec3(0.9f, 0.6f, 0.3f);
+             i.specular_roughness = 0.5f;
+             return i;
+         }},
+        {"metal_anisotropic",
+         [] {
+             OpenPBR_ResolvedInputs i = defaults();
+             i.base_metalness = 1.0f;
+             i.base_color = glm::vec3(0.95f, 0.8f, 0.5f);
+             i.specular_roughness = 0.5f;
+             i.specular_roughness_anisotropy = 0.8f;
+             i.geometry_basis = tilted_basis();
+             i.specular_anisotropy_rotation = glm::vec2(std::cos(0.5f), std::sin(0.5f));
+             return i;
+         },
+         {Side::outside, Side::inside}},
+        {"metal_smooth",
+         [] {
+             OpenPBR_ResolvedInputs i = defaults();
+             i.base_metalness = 1.0f;
+             i.specular_roughness = 0.0f;
+             return i;
+         }},
+        {"partial_opacity",
+         [] {
+             OpenPBR_ResolvedInputs i = defaults();
+             i.geometry_opacity = 0.5f;
+             return i;
+         }},
+        // Newer lobes (coat, fuzz, transmission, thin-walled).
+        {"coat_glossy",
+         [] {
+             OpenPBR_ResolvedInputs i = defaults();
+             i.coat_weight = 1.0f;
+             i.coat_roughness = 0.2f;
+             i.coat_color = glm::vec3(0.9f, 0.8f, 0.6f);
+             return i;
+         }},
+        {"coat_smooth_tilted_coat_normal",
+         [] {
+             OpenPBR_ResolvedInputs i = defaults();
+             i.coat_weight = 0.7f;
+             i.coat_roughness = 0.0f;
+             i.geometry_coat_basis.normal = glm::normalize(glm::vec3(0.2f, 0.1f, 1.0f));
+             return i;
+         }},
+        {"fuzz",
+         [] {
+             OpenPBR_ResolvedInputs i = defaults();
+             i.fuzz_weight = 1.0f;
+             i.fuzz_roughness = 0.5f;
+             return i;
+         }},
+        {"rough_glass",
+         [] {
+             OpenPBR_ResolvedInputs i = defaults();
+             i.transmission_weight = 1.0f;
+             return i;
+         },
+         {Side::outside, Side::inside},
+         {1.5f, 1.0f / 1.5f}},
+        {"smooth_glass",
+         [] {
+             OpenPBR_ResolvedInputs i = defaults();
+             i.transmission_weight = 1.0f;
+             i.specular_roughness = 0.0f;
+             return i;
+         },
+         {Side::outside, Side::inside},
+         {1.5f, 1.0f / 1.5f}},
+        {"dispersive_rough_glass",
+         [] {
+             OpenPBR_ResolvedInputs i = defaults();
+             i.transmission_weight = 1.0f;
+             i.transmission_dispersion_scale = 1.0f;
+             i.specular_roughness = 0.4f;
+             return i;
+         }},
+        {"thin_walled_translucent",
+         [] {
+             OpenPBR_ResolvedInputs i = defaults();
+             i.geometry_thin_walled = true;
+             i.transmission_weight = 1.0f;
+             return i;
+         },
+         {Side::outside, Side::inside}},
+        {"thin_walled_subsurface",
+         [] {
+             OpenPBR_ResolvedInputs i = defaults();
+             i.geometry_thin_walled = true;
+             i.subsurface_weight = 1.0f;
+             i.subsurface_scatter_anisotropy = 0.3f;
+             return i;
+         }},
+        // Add: thin film, volumes, ... (one entry each).
+    };
+    return configs;
+}
+
+const std::vector<float> kViewCosines = {1.0f, 0.5f, 0.1f, 0.02f};
+
+struct StatisticsCase
+{
+    const MaterialConfig* config;
+    float view_cos;
+    Side side;
+    float ior;  // NaN: as the configuration sets it
+
+    OpenPBR_ResolvedInputs inputs() const
+    {
+        OpenPBR_ResolvedInputs i = config->make_inputs();
+        if (!std::isnan(ior))
+        {
+            i.specular_ior = ior;
+        }
+        return i;
+    }
+
+    // View at cos theta = +-view_cos from the geometric normal, azimuth 0.6 rad from the
+    // (orthonormalized, unrotated) geometry tangent.
+    glm::vec3 view_world() const
+    {
+        const OpenPBR_ResolvedInputs i = inputs();
+        const OpenPBR_Basis frame =
+            openpbr_make_basis(i.geometry_basis.normal, i.geometry_basis.tangent, i.geometry_basis.bitangent);
+        return direction_in_basis(frame, side == Side::outside ? view_cos : -view_cos, 0.6);
+    }
+
+    std::string name() const
+    {
+        std::ostringstream out;
+        out << config->name << "_cos" << view_cos << (side == Side::outside ? "_outside" : "_inside");
+        if (!std::isnan(ior))
+        {
+            out << "_ior" << ior;
+        }
+        std::string s = out.str();
+        for (char& c : s)
+        {
+            c = (c == '.') ? 'p' : c;
+        }
+        return s;
+    }
+};
+
+std::vector<StatisticsCase> statistics_cases()
+{
+    std::vector<StatisticsCase> cases;
+    for (const MaterialConfig& config : material_configs())
+    {
+        std::vector<float> iors = config.ior_variants;
+        if (iors.empty())
+        {
+            iors.push_back(std::nanf(""));
+        }
+        for (float view_cos : kViewCosines)
+        {
+            for (Side side : config.sides)
+            {
+                for (float ior : iors)
+                {
+                    cases.push_back({&config, view_cos, side, ior});
+                }
+            }
+        }
+    }
+    return cases;
+}
+
+// Hypothesis tests in this binary: per case the chi-square, the delta-fraction binomial and
+// the continuous-fraction binomial of the chi-square run, plus the pdf-integral binomial.
+constexpr int kHypothesesPerCase = 4;
+
+double significance_level()
+{
+    static const double level =
+        sidak_significance(0.01, static_cast<int>(statistics_cases().size()) * kHypothesesPerCase);
+    return level;
+}
+
+constexpr std::uint64_t kChiSquareSamples = 1000000;
+constexpr std::uint64_t kConsistencySamples = 200000;
+constexpr std::uint64_t kPdfIntegralSamples = 400000;
+
+class BsdfStatistics : public ::testing::TestWithParam<StatisticsCase>
+{
+protected:
+    OpenPBR_PreparedBsdf prepare() const { return openpbr_prepare(GetParam().inputs(), GetParam().view_world()); }
+    std::string context() const
+    {
+        return GetParam().name() + "\n  inputs: " + describe_inputs(GetParam().inputs()) +
+               "\n  view: " + to_string(GetParam().view_world());
+    }
+    std::uint64_t seed() const { return seed_from_name(GetParam().name()); }
+};
+
+TEST_P(BsdfStatistics, ChiSquareSampleMatchesPdf)
+{
+    const OpenPBR_PreparedBsdf bsdf = prepare();
+    ChiSquareOptions options;
+    options.sample_count = kChiSquareSamples;
+    options.seed = seed();
+    const ChiSquareResult result = run_chi_square_test(make_bsdf_target(bsdf, GetParam().name()), options);
+    const double alpha = significance_level();
+    SCOPED_TRACE(context() + "\n" + result.report);
+    EXPECT_EQ(result.nonfinite_count, 0u);
+    EXPECT_TRUE(result.delta_pdfs_consistent) << "delta samples must report their selection probability as pdf";
+    EXPECT_GT(result.p_value, alpha) << "sample() does not follow pdf() (chi-square)";
+    EXPECT_GT(result.delta_p_value, alpha) << "fraction of delta samples != sum of delta selection probabilities";
+    EXPECT_GT(result.continuous_p_value, alpha) << "fraction of continuous samples != integral of pdf";
+}
+
+TEST_P(BsdfStatistics, PdfIntegralMatchesValidFraction)
+{
+    const OpenPBR_PreparedBsdf bsdf = prepare();
+    const PdfIntegralResult result =
+        check_pdf_integral(make_bsdf_target(bsdf, GetParam().name()), kPdfIntegralSamples, seed() + 1);
+    SCOPED_TRACE(context());
+    EXPECT_LE(result.pdf_integral, 1.0 + 1e-4);
+    EXPECT_GT(result.p_value, significance_level())
+        << "integral of pdf " << result.pdf_integral << " vs fraction of valid non-delta samples "
+        << result.valid_fraction << " +- " << result.standard_error;
+}
+
+TEST_P(BsdfStatistics, SampleWeightIsEvalOverPdf)
+{
+    const OpenPBR_PreparedBsdf bsdf = prepare();
+    ConsistencyOptions options;
+    options.sample_count = kConsistencySamples;
+    options.seed = seed() + 2;
+    const ConsistencyResult result = check_sample_consistency(make_bsdf_target(bsdf, GetParam().name()), options);
+    SCOPED_TRACE(context());
+    EXPECT_TRUE(result.ok()) << result.weight_mismatch_count << " weight and " << result.pdf_mismatch_count
+                             << " pdf mismatches, " << result.invalid_value_count << " invalid values of "
+                             << result.sample_count << " samples (max relative errors: weight "
+                             << result.max_weight_relative_error << ", pdf " << result.max_pdf_relative_error
+                             << "); first: " << result.first_failure;
+}
+
+INSTANTIATE_TEST_SUITE_P(Configurations, BsdfStatistics, ::testing::ValuesIn(statistics_cases()),
+                         [](const ::testing::TestParamInfo<StatisticsCase>& info) { return info.param.name(); });
+
+// ------------------------------------------------------------------------------------------
+// White furnace
+
+enum class FurnaceExpectation
+{
+    // |1 - albedo| <= 0.005 for view cos >= 0.1, and albedo <= 1.005 at every angle.
+    energy_conserving,
+    // Only albedo <= 1.005 at every angle (white but lossy configurations).
+    no_energy_gain,
+};
+
+struct FurnaceConfig
+{
+    std::string name;
+    std::function<OpenPBR_ResolvedInputs()> make_inputs;
+    FurnaceExpectation expectation;
+    std::vector<Side> sides = {Side::outside};
+};
+
+OpenPBR_ResolvedInputs white_metal(float roughness, float anisotropy)
+{
+    OpenPBR_ResolvedInputs i = defaults();
+    i.base_color = glm::vec3(1.0f);
+    i.specular_color = glm::vec3(1.0f);
+    i.base_metalness = 1.0f;
+    i.specular_roughness = roughness;
+    i.specular_roughness_anisotropy = anisotropy;
+    if (anisotropy > 0.0f)
+    {
+        i.geometry_basis = tilted_basis();
+        i.specular_anisotropy_rotation = glm::vec2(std::cos(1.0f), std::sin(1.0f));
+    }
+    return i;
+}
+
+OpenPBR_ResolvedInputs white_dielectric(float specular_roughness, float diffuse_roughness)
+{
+    OpenPBR_ResolvedInputs i = defaults();
+    i.base_color = glm::vec3(1.0f);
+    i.specular_color = glm::vec3(1.0f);
+    i.specular_roughness = specular_roughness;
+    i.base_diffuse_roughness = diffuse_roughness;
+    return i;
+}
+
+const std::vector<FurnaceConfig>& furnace_configs()
+{
+    using E = FurnaceExpectation;
+    static const std::vector<FurnaceConfig> configs = {
+        {"white_metal_r0", [] { return white_metal(0.0f, 0.0f); }, E::energy_conserving},
+        {"white_metal_r0p2", [] { return white_metal(0.2f, 0.0f); }, E::energy_conserving},
+        {"white_metal_r0p5", [] { return white_metal(0.5f, 0.0f); }, E::energy_conserving},
+        {"white_metal_r0p8", [] { return white_metal(0.8f, 0.0f); }, E::energy_conserving},
+        {"white_metal_r1", [] { return white_metal(1.0f, 0.0f); }, E::energy_conserving},
+        {"white_metal_aniso_r0p5_a0p8", [] { return white_metal(0.5f, 0.8f); }, E::energy_conserving},
+        {"white_metal_aniso_r1_a0p8", [] { return white_metal(1.0f, 0.8f); }, E::energy_conserving},
+        {"white_diffuse_white_specular_r0", [] { return white_dielectric(0.0f, 0.0f); }, E::energy_conserving},
+        {"white_diffuse_white_specular_r0p3", [] { return white_dielectric(0.3f, 0.0f); }, E::energy_conserving},
+        {"white_diffuse_white_specular_r0p6", [] { return white_dielectric(0.6f, 0.0f); }, E::energy_conserving},
+        {"white_diffuse_white_specular_r1", [] { return white_dielectric(1.0f, 0.0f); }, E::energy_conserving},
+        {"eon_rough_white",
+         [] {
+             OpenPBR_ResolvedInputs i = white_dielectric(0.3f, 1.0f);
+             i.specular_weight = 0.0f;
+             return i;
+         },
+         E::energy_conserving},
+        {"eon_rough_white_white_specular", [] { return white_dielectric(0.3f, 1.0f); }, E::energy_conserving},
+        // specular_weight 0 or specular_ior 1: the specular interface vanishes (eta = 1).
+        {"white_lambert_no_specular",
+         [] {
+             OpenPBR_ResolvedInputs i = white_dielectric(0.3f, 0.0f);
+             i.specular_weight = 0.0f;
+             return i;
+         },
+         E::energy_conserving},
+        {"white_diffuse_specular_ior_1",
+         [] {
+             OpenPBR_ResolvedInputs i = white_dielectric(0.3f, 0.0f);
+             i.specular_ior = 1.0f;
+             return i;
+         },
+         E::energy_conserving},
+        {"eon_half_rough_white_white_specular", [] { return white_dielectric(0.5f, 0.5f); }, E::energy_conserving},
+        {"white_half_metal",
+         [] {
+             OpenPBR_ResolvedInputs i = white_dielectric(0.4f, 0.0f);
+             i.base_metalness = 0.5f;
+             return i;
+         },
+         E::energy_conserving},
+        {"white_dielectric_opacity_0p5",
+         [] {
+             OpenPBR_ResolvedInputs i = white_dielectric(0.4f, 0.0f);
+             i.geometry_opacity = 0.5f;
+             return i;
+         },
+         E::energy_conserving},
+        {"default_material", [] { return defaults(); }, E::no_energy_gain},
+        // Spec "White furnace testing": coat, fuzz, translucent and subsurface bases.
+        {"white_coat_on_white_diffuse",
+         [] {
+             OpenPBR_ResolvedInputs i = white_dielectric(0.3f, 0.0f);
+             i.coat_weight = 1.0f;
+             i.coat_roughness = 0.2f;
+             return i;
+         },
+         E::energy_conserving},
+        {"white_half_coat_on_white_metal",
+         [] {
+             OpenPBR_ResolvedInputs i = white_metal(0.4f, 0.0f);
+             i.coat_weight = 0.5f;
+             i.coat_roughness = 0.0f;
+             return i;
+         },
+         E::energy_conserving},
+        {"white_fuzz_on_white_diffuse",
+         [] {
+             OpenPBR_ResolvedInputs i = white_dielectric(0.3f, 0.0f);
+             i.fuzz_weight = 1.0f;
+             return i;
+         },
+         E::energy_conserving},
+        {"white_rough_glass",
+         [] {
+             OpenPBR_ResolvedInputs i = white_dielectric(0.3f, 0.0f);
+             i.transmission_weight = 1.0f;
+             return i;
+         },
+         E::energy_conserving,
+         {Side::outside, Side::inside}},
+        {"white_smooth_glass",
+         [] {
+             OpenPBR_ResolvedInputs i = white_dielectric(0.0f, 0.0f);
+             i.transmission_weight = 1.0f;
+             return i;
+         },
+         E::energy_conserving,
+         {Side::outside, Side::inside}},
+        {"white_thin_walled_translucent",
+         [] {
+             OpenPBR_ResolvedInputs i = white_dielectric(0.3f, 0.0f);
+             i.transmission_weight = 1.0f;
+             i.geometry_thin_walled = true;
+             return i;
+         },
+         E::energy_conserving},
+        {"white_thin_walled_subsurface",
+         [] {
+             OpenPBR_ResolvedInputs i = white_dielectric(0.3f, 0.0f);
+             i.subsurface_weight = 1.0f;
+             i.subsurface_color = glm::vec3(1.0f);
+             i.geometry_thin_walled = true;
+             return i;
+         },
+         E::energy_conserving},
+        // Add: thin-film white configurations (the film must not absorb).
+    };
+    return configs;
+}
+
+const std::vector<float> kFurnaceViewCosines = {1.0f, 0.5f, 0.1f, 0.02f, 1e-3f};
+constexpr double kFurnaceTargetError = 5e-4;
+
+struct FurnaceCase
+{
+    const FurnaceConfig* config;
+    float view_cos;
+    Side side;
+    std::string name() const
+    {
+        std::ostringstream out;
+        out << config->name << "_cos" << view_cos << (side == Side::inside ? "_inside" : "");
+        std::string s = out.str();
+        for (char& c : s)
+        {
+            c = (c == '.') ? 'p' : (c == '-' ? 'm' : c);
+        }
+        return s;
+    }
+};
+
+std::vector<FurnaceCase> furnace_cases()
+{
+    std::vector<FurnaceCase> cases;
+    for (const FurnaceConfig& config : furnace_configs())
+    {
+        for (float view_cos : kFurnaceViewCosines)
+        {
+            for (Side side : config.sides)
+            {
+                cases.push_back({&config, view_cos, side});
+            }
+        }
+    }
+    return cases;
+}
+
+class WhiteFurnace : public ::testing::TestWithParam<FurnaceCase>
+{
+};
+
+TEST_P(WhiteFurnace, Albedo)
+{
+    const FurnaceCase& c = GetParam();
+    const OpenPBR_ResolvedInputs inputs = c.config->make_inputs();
+    const OpenPBR_Basis frame =
+        openpbr_make_basis(inputs.geometry_basis.normal, inputs.geometry_basis.tangent, inputs.geometry_basis.bitangent);
+    const glm::vec3 view = direction_in_basis(frame, c.side == Side::outside ? c.view_cos : -c.view_cos, 0.6);
+    const OpenPBR_PreparedBsdf bsdf = openpbr_prepare(inputs, view);
+    // Deterministic sample-count escalation: 2^18 samples, 4x more while the standard error
+    // exceeds kFurnaceTargetError (lobe selection makes some configurations noisy).
+    const SamplingTarget target = make_bsdf_target(bsdf, c.name());
+    AlbedoEstimate albedo;
+    for (std::uint64_t samples = 1u << 18; samples <= (1u << 22); samples *= 4)
+    {
+        albedo = estimate_albedo(target, samples, seed_from_name(c.name()));
+        const glm::dvec3 se = albedo.standard_error;
+        if (std::max({se.x, se.y, se.z}) <= kFurnaceTargetError)
+        {
+            break;
+        }
+    }
+    SCOPED_TRACE(c.name() + "\n  inputs: " + describe_inputs(inputs));
+    for (int channel = 0; channel < 3; ++channel)
+    {
+        const double a = albedo.mean[channel];
+        const double se = albedo.standard_error[channel];
+        // The estimate must be precise enough for the 0.005 tolerance to mean something. At
+        // grazing views (only the 1.005 bound applies) cosine-sampled EON has heavy-tailed
+        // weights (pi f / rho grows like sigma / max(mu_i, mu_o)), so there 4M samples only
+        // reach a few 1e-3.
+        const double max_standard_error = c.view_cos >= 0.1f ? 1e-3 : 5e-3;
+        EXPECT_LT(se, max_standard_error) << "channel " << channel << ": albedo " << a << " from "
+                                          << albedo.sample_count << " samples";
+        EXPECT_LE(a, 1.005) << "energy gain, channel " << channel << ": albedo " << a << " +- " << se;
+        if (c.config->expectation == FurnaceExpectation::energy_conserving && c.view_cos >= 0.1f)
+        {
+            EXPECT_LE(std::fabs(1.0 - a), 0.005)
+                << "white furnace, channel " << channel << ": albedo " << a << " +- " << se;
+        }
+    }
+}
+
+INSTANTIATE_TEST_SUITE_P(Configurations, WhiteFurnace, ::testing::ValuesIn(furnace_cases()),
+                         [](const ::testing::TestParamInfo<FurnaceCase>& info) { return info.param.name(); });
+
+// ------------------------------------------------------------------------------------------
+// Reciprocity of individual lobes, compensation disabled (weight 1). The full BSDF is not
+// reciprocal by design: see the comment on LobeFunction in bsdf_statistics.h.
+
+struct ReciprocityCase
+{
+    std::string name;
+    LobeFunction f;
+    bool both_sides = false;  // light over the full sphere (transmission lobes)
+    double min_value = 1e-6;  // values below are not compared (see reciprocity_cases())
+};
+
+LobeFunction eon_lobe(glm::vec3 rho, float sigma)
+{
+    return [rho, sigma](const glm::vec3& view, const glm::vec3& light) {
+        const OpenPBR_DiffuseLobe lobe = openpbr_diffuse_lobe_init(glm::vec3(1.0f), rho, sigma, 1.0f, view);
+        return openpbr_diffuse_lobe_eval(lobe, view, light);
+    };
+}
+
+LobeFunction microfacet_lobe(glm::vec2 alpha, OpenPBR_Fresnel fresnel)
+{
+    return [alpha, fresnel](const glm::vec3& view, const glm::vec3& light) {
+        const OpenPBR_MicrofacetReflectionLobe lobe = openpbr_microfacet_reflection_lobe_init(
+            glm::vec3(1.0f), alpha, fresnel, OPENPBR_LOBE_ID_SPECULAR_REFLECTION, 1.0f, view);
+        return openpbr_microfacet_reflection_lobe_eval(lobe, view, light);
+    };
+}
+
+// Rough dielectric interface (reflection and refraction with Fresnel) between n = 1 above and
+// n = `ior` below. The lobe is written for throughput, so f(o, i) / n_i^2 = f(i, o) / n_o^2
+// (n_i, n_o: the indices on the light's and the view's side); dividing by n_light^2 makes it
+// plainly reciprocal. A view from below is evaluated in the mirrored frame with eta = 1/ior.
+LobeFunction dielectric_interface_lobe(glm::vec2 alpha, float ior)
+{
+    return [alpha, ior](const glm::vec3& view, const glm::vec3& light) {
+        const bool below = view.z < 0.0f;
+        const glm::vec3 v = below ? glm::vec3(view.x, view.y, -view.z) : view;
+        const glm::vec3 l = below ? glm::vec3(light.x, light.y, -light.z) : light;
+        const float eta = below ? 1.0f / ior : ior;
+        const OpenPBR_DielectricLobe lobe = openpbr_dielectric_lobe_init(
+            glm::vec3(1.0f), glm::vec3(1.0f), alpha, glm::vec3(eta), true, OPENPBR_LOBE_ID_SPECULAR_TRANSMISSION, v);
+        const float n_light = light.z > 0.0f ? 1.0f : ior;
+        return openpbr_dielectric_lobe_eval(lobe, v, l) / (n_light * n_light);
+    };
+}
+
+const std::vector<ReciprocityCase>& reciprocity_cases()
+{
+    static const std::vector<ReciprocityCase> cases = {
+        {"lambert", eon_lobe(glm::vec3(0.8f), 0.0f)},
+        {"eon_sigma0p5", eon_lobe(glm::vec3(0.9f, 0.5f, 0.1f), 0.5f)},
+        {"eon_sigma1", eon_lobe(glm::vec3(1.0f), 1.0f)},
+        {"ggx_dielectric_r0p5", microfacet_lobe(openpbr_ggx_alpha(0.5f, 0.0f), openpbr_make_dielectric_fresnel(1.5f, glm::vec3(1.0f)))},
+        {"ggx_dielectric_inverse_eta",
+         microfacet_lobe(openpbr_ggx_alpha(0.3f, 0.0f), openpbr_make_dielectric_fresnel(1.0f / 1.5f, glm::vec3(1.0f)))},
+        {"ggx_dielectric_r1", microfacet_lobe(openpbr_ggx_alpha(1.0f, 0.0f), openpbr_make_dielectric_fresnel(1.5f, glm::vec3(1.0f)))},
+        {"ggx_f82_metal",
+         microfacet_lobe(openpbr_ggx_alpha(0.4f, 0.0f),
+                         openpbr_make_f82_fresnel(glm::vec3(0.9f, 0.6f, 0.3f), glm::vec3(0.8f, 0.9f, 1.0f), glm::vec3(1.0f)))},
+        {"ggx_anisotropic",
+         microfacet_lobe(openpbr_ggx_alpha(0.6f, 0.8f), openpbr_make_dielectric_fresnel(1.5f, glm::vec3(1.0f)))},
+        // The view-from-below evaluation computes the Fresnel factor from the inside cosine,
+        // which is ill-conditioned near the critical angle: rounding of 1e-7 in
+        // 1 - sin^2(theta_t) = cos^2(theta_outside) is a relative error of 1e-7 / (o.h)^2. Such
+        // pairs (grazing outside, o.h -> 0) only have values well below 1e-2, so smaller values
+        // are not compared (on typical values of 0.1 to 10).
+        {"dielectric_interface_r0p3", dielectric_interface_lobe(openpbr_ggx_alpha(0.3f, 0.0f), 1.5f), true, 1e-2},
+        {"dielectric_interface_r0p8_aniso", dielectric_interface_lobe(openpbr_ggx_alpha(0.8f, 0.5f), 1.33f), true, 1e-2},
+        // Add: fuzz, thin-walled diffuse transmission (eon with hemisphere_sign -1), ...
+    };
+    return cases;
+}
+
+class LobeReciprocity : public ::testing::TestWithParam<ReciprocityCase>
+{
+};
+
+TEST_P(LobeReciprocity, SwappingViewAndLightKeepsTheBsdf)
+{
+    ReciprocityOptions options;
+    options.both_sides = GetParam().both_sides;
+    options.min_value = GetParam().min_value;
+    const ReciprocityResult result = check_reciprocity(GetParam().f, 100000, 99, options);
+    EXPECT_GT(result.checked_count, 30000u);
+    EXPECT_EQ(result.failure_count, 0u) << GetParam().name << ": " << result.failure_count << " of "
+                                         << result.checked_count << " values differ by more than 1e-4 (relative) plus "
+                                         << "rounding; largest raw relative error " << result.max_relative_error
+                                         << "; worst pair " << result.worst;
+}
+
+INSTANTIATE_TEST_SUITE_P(Lobes, LobeReciprocity, ::testing::ValuesIn(reciprocity_cases()),
+                         [](const ::testing::TestParamInfo<ReciprocityCase>& info) { return info.param.name; });
+
+// ------------------------------------------------------------------------------------------
+// The machinery itself: known values and a sampler with a deliberately wrong pdf.
+
+TEST(StatisticsMachinery, IncompleteGammaKnownValues)
+{
+    // Q(1, x) = exp(-x); Q(1/2, x) = erfc(sqrt(x)); chi-square(1 dof) at 3.841459 is 0.05.
+    for (double x : {0.01, 0.5, 1.0, 2.0, 10.0, 50.0})
+    {
+        EXPECT_NEAR(regularized_gamma_q(1.0, x), std::exp(-x), 1e-12 * std::max(1.0, std::exp(-x)));
+        EXPECT_NEAR(regularized_gamma_q(0.5, x), std::erfc(std::sqrt(x)), 1e-12);
+        EXPECT_NEAR(regularized_gamma_p(3.0, x) + regularized_gamma_q(3.0, x), 1.0, 1e-12);
+    }
+    EXPECT_NEAR(chi_square_p_value(3.841459, 1), 0.05, 1e-6);
+    EXPECT_NEAR(chi_square_p_value(18.307038, 10), 0.05, 1e-6);
+    // Even dof 2m: Q(m, x) = exp(-x) sum_{k < m} x^k / k!, summed here in log space.
+    const auto poisson_tail = [](int m, double x) {
+        double sum = 0.0;
+        for (int k = 0; k < m; ++k)
+        {
+            sum += std::exp(-x + k * std::log(x) - std::lgamma(k + 1.0));
+        }
+        return sum;
+    };
+    EXPECT_NEAR(chi_square_p_value(1000.0, 1000), poisson_tail(500, 500.0), 1e-10);
+    EXPECT_NEAR(chi_square_p_value(1100.0, 1000), poisson_tail(500, 550.0), 1e-10);
+    EXPECT_NEAR(chi_square_p_value(30.0, 60), poisson_tail(30, 15.0), 1e-10);
+    // Sidak: 100 tests at family level 0.01.
+    EXPECT_NEAR(sidak_significance(0.01, 100), 1.0 - std::pow(0.99, 0.01), 1e-15);
+}
+
+TEST(StatisticsMachinery, BinomialPValue)
+{
+    EXPECT_NEAR(binomial_two_sided_p_value(5, 10, 0.5), 1.0, 1e-12);
+    // P(X <= 1 or X >= 9) for Binomial(10, 1/2) = 22 / 1024.
+    EXPECT_NEAR(binomial_two_sided_p_value(1, 10, 0.5), 22.0 / 1024.0, 1e-12);
+    EXPECT_EQ(binomial_two_sided_p_value(1, 10, 0.0), 0.0);
+    EXPECT_EQ(binomial_two_sided_p_value(10, 10, 1.0), 1.0);
+    EXPECT_LT(binomial_two_sided_p_value(510000, 1000000, 0.5), 1e-9);
+    EXPECT_GT(binomial_two_sided_p_value(500300, 1000000, 0.5), 0.5);
+}
+
+TEST(StatisticsMachinery, GaussLegendreIntegratesPolynomialsExactly)
+{
+    std::vector<double> nodes, weights;
+    gauss_legendre(8, nodes, weights);
+    for (int degree = 0; degree <= 15; ++degree)
+    {
+        double sum = 0.0;
+        for (std::size_t i = 0; i < nodes.size(); ++i)
+        {
+            sum += weights[i] * std::pow(nodes[i], degree);
+        }
+        EXPECT_NEAR(sum, degree % 2 == 0 ? 2.0 / (degree + 1) : 0.0, 1e-13) << "degree " << degree;
+    }
+}
+
+SamplingTarget cosine_target(bool wrong_pdf)
+{
+    SamplingTarget target;
+    target.name = wrong_pdf ? "cosine sampler, uniform pdf" : "cosine sampler";
+    target.frame = openpbr_make_basis(glm::vec3(0.0f, 0.0f, 1.0f));
+    target.sample = [](const glm::vec3& u) {
+        DirectionSample s;
+        s.direction = openpbr_sample_cosine_hemisphere(glm::vec2(u.x, u.y));
+        s.pdf = openpbr_cosine_hemisphere_pdf(s.direction.z);
+        s.lobe_type = s.pdf > 0.0 ? OPENPBR_LOBE_TYPE_REFLECTION | OPENPBR_LOBE_TYPE_DIFFUSE : OPENPBR_LOBE_TYPE_NONE;
+        return s;
+    };
+    target.pdf = [wrong_pdf](const glm::vec3& d) {
+        return d.z > 0.0f ? (wrong_pdf ? 1.0 / (2.0 * 3.14159265358979) : d.z / 3.14159265358979) : 0.0;
+    };
+    return target;
+}
+
+TEST(StatisticsMachinery, ChiSquareAcceptsCorrectAndRejectsWrongPdf)
+{
+    ChiSquareOptions options;
+    options.sample_count = 200000;
+    const ChiSquareResult good = run_chi_square_test(cosine_target(false), options);
+    EXPECT_GT(good.p_value, 1e-3) << good.report;
+    EXPECT_NEAR(good.pdf_integral, 1.0, 1e-6);
+    const ChiSquareResult bad = run_chi_square_test(cosine_target(true), options);
+    EXPECT_LT(bad.p_value, 1e-12) << bad.report;
+}
+
+// Sampling a GGX lobe of alpha 0.25 against the pdf of alpha 0.27: a subtle shape error.
+TEST(StatisticsMachinery, ChiSquareDetectsASlightlyWrongRoughness)
+{
+    const glm::vec3 view = glm::normalize(glm::vec3(0.5f, 0.1f, 0.7f));
+    const OpenPBR_Fresnel fresnel = openpbr_make_dielectric_fresnel(1.5f, glm::vec3(1.0f));
+    const OpenPBR_MicrofacetReflectionLobe sampled = openpbr_microfacet_reflection_lobe_init(
+        glm::vec3(1.0f), glm::vec2(0.25f), fresnel, OPENPBR_LOBE_ID_SPECULAR_REFLECTION, 1.0f, view);
+    const OpenPBR_MicrofacetReflectionLobe reported = openpbr_microfacet_reflection_lobe_init(glm::vec3(1.0f), glm::vec2(0.27f), fresnel,
+                                                       OPENPBR_LOBE_ID_SPECULAR_REFLECTION, 1.0f, view);
+    SamplingTarget target;
+    target.name = "ggx 0.25 sampled, 0.27 pdf";
+    target.frame = openpbr_make_basis(glm::vec3(0.0f, 0.0f, 1.0f));
+    target.sample = [sampled, reported, view](const glm::vec3& u) {
+        const OpenPBR_LobeSample ls = openpbr_microfacet_reflection_lobe_sample(sampled, view, glm::vec2(u.x, u.y));
+        DirectionSample s;
+        s.direction = ls.direction;
+        s.lobe_type = ls.lobe_type;
+        s.pdf = ls.lobe_type != OPENPBR_LOBE_TYPE_NONE ? openpbr_microfacet_reflection_lobe_pdf(reported, view, ls.direction) : 0.0;
+        return s;
+    };
+    target.pdf = [reported, view](const glm::vec3& d) { return double(openpbr_microfacet_reflection_lobe_pdf(reported, view, d)); };
+    ChiSquareOptions options;
+    options.sample_count = 200000;
+    const ChiSquareResult result = run_chi_square_test(target, options);
+    EXPECT_LT(result.p_value, 1e-6) << result.report;
+}
+
+TEST(StatisticsMachinery, ChiSquareRejectsMissingDeltaProbability)
+{
+    // Half of the samples are a delta atom whose probability the target does not declare.
+    SamplingTarget target = cosine_target(false);
+    const auto continuous = target.sample;
+    target.sample = [continuous](const glm::vec3& u) {
+        if (u.z < 0.5f)
+        {
+            DirectionSample s;
+            s.direction = glm::vec3(0.0f, 0.0f, -1.0f);
+            s.pdf = 0.5;
+            s.lobe_type = OPENPBR_LOBE_TYPE_TRANSMISSION | OPENPBR_LOBE_TYPE_SPECULAR;
+            return s;
+        }
+        return continuous(u);
+    };
+    ChiSquareOptions options;
+    options.sample_count = 100000;
+    const ChiSquareResult result = run_chi_square_test(target, options);
+    EXPECT_LT(result.p_value, 1e-12) << result.report;  // the continuous half is over-expected
+    EXPECT_LT(result.delta_p_value, 1e-12) << result.report;
+    EXPECT_FALSE(result.delta_pdfs_consistent);
+}
+
+TEST(StatisticsMachinery, ConsistencyDetectsSmallWeightAndPdfErrors)
+{
+    const OpenPBR_PreparedBsdf bsdf =
+        openpbr_prepare(openpbr_make_default_resolved_inputs(), glm::normalize(glm::vec3(0.3f, 0.2f, 1.0f)));
+    ConsistencyOptions options;
+    options.sample_count = 20000;
+    const SamplingTarget exact = make_bsdf_target(bsdf);
+    EXPECT_TRUE(check_sample_consistency(exact, options).ok());
+    SamplingTarget wrong_weight = exact;
+    wrong_weight.sample = [exact](const glm::vec3& u) {
+        DirectionSample s = exact.sample(u);
+        s.weight.diffuse *= 1.0003f;
+        return s;
+    };
+    EXPECT_GT(check_sample_consistency(wrong_weight, options).weight_mismatch_count, 1000u);
+    SamplingTarget wrong_pdf = exact;
+    wrong_pdf.pdf = [exact](const glm::vec3& d) { return exact.pdf(d) * 1.0003; };
+    EXPECT_GT(check_sample_consistency(wrong_pdf, options).pdf_mismatch_count, 1000u);
+    SamplingTarget negative = exact;
+    negative.sample = [exact](const glm::vec3& u) {
+        DirectionSample s = exact.sample(u);
+        s.weight.specular.y = -1e-9f;
+        return s;
+    };
+    EXPECT_GT(check_sample_consistency(negative, options).invalid_value_count, 1000u);
+}
+
+TEST(StatisticsMachinery, RandomNumbersAreDeterministicAndUniform)
+{
+    Pcg32 a(42, 3), b(42, 3), c(42, 4);
+    bool differs = false;
+    double sum = 0.0;
+    for (int i = 0; i < 100000; ++i)
+    {
+        const float x = a.next_float();
+        EXPECT_EQ(x, b.next_float());
+        differs = differs || (x != c.next_float());
+        ASSERT_GE(x, 0.0f);
+        ASSERT_LT(x, 1.0f);
+        sum += x;
+    }
+    EXPECT_TRUE(differs);
+    EXPECT_NEAR(sum / 100000.0, 0.5, 0.005);
+    const KroneckerSequence sequence(5);
+    glm::dvec3 mean(0.0);
+    for (int i = 0; i < 4096; ++i)
+    {
+        const glm::vec3 u = sequence.at(static_cast<std::uint64_t>(i));
+        ASSERT_TRUE(u.x >= 0.0f && u.x < 1.0f && u.y >= 0.0f && u.y < 1.0f && u.z >= 0.0f && u.z < 1.0f);
+        mean += glm::dvec3(u);
+    }
+    mean /= 4096.0;
+    EXPECT_NEAR(mean.x, 0.5, 1e-3);  // low discrepancy: far closer than 1/sqrt(N)
+    EXPECT_NEAR(mean.y, 0.5, 1e-3);
+    EXPECT_NEAR(mean.z, 0.5, 1e-3);
+}
+
+}  // namespace
