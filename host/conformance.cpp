@@ -11,6 +11,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include "host/cuda_conformance.h"
 #include "host/shipped_tables.h"
 #include "host/vulkan_runner.h"
 #include "slang/openpbr.h"
@@ -77,6 +78,7 @@ const std::vector<GpuPath>& gpu_paths()
         {"glsl-spirv", "conformance.glsl.spv", "main"},
         {"slang-hlsl", "conformance.slang-hlsl.spv", "main"},
         {"slang-glsl", "conformance.slang-glsl.spv", "main"},
+        {"hlsl", "conformance.hlsl.spv", "main"},
     };
     return paths;
 }
@@ -111,28 +113,11 @@ GpuBatchResult execute_gpu_path(const GpuPath& path, VulkanContext& context, con
     return batch;
 }
 
-ConformancePathResult run_gpu_path(const GpuPath& path, VulkanContext& context, const std::vector<float>& queries,
-                                   const std::vector<float>& materials, const std::vector<float>& cpu_results,
-                                   const ConformanceOptions& options)
+// Compares one path's results with the CPU build's (see the foundation issue's metrics).
+void compare_with_cpu(ConformancePathResult& result, const std::vector<float>& queries,
+                      const std::vector<float>& gpu_results, const std::vector<float>& cpu_results)
 {
-    ConformancePathResult result;
-    result.name = path.name;
     const std::size_t query_count = queries.size() / OPENPBR_QUERY_FLOATS;
-    context.clear_validation_messages();
-    const GpuBatchResult batch = execute_gpu_path(path, context, queries, materials, options.kernel_directory);
-    const DispatchTiming& timing = batch.timing;
-    result.executed = true;
-    result.note = context.device_name();
-    result.first_dispatch_ms = timing.first_dispatch_ms;
-    result.queries_per_second = timing.dispatch_ms > 0.0 ? double(query_count) / (timing.dispatch_ms * 1e-3) : 0.0;
-    const std::vector<std::string> messages = context.validation_messages();
-    result.validation_messages = messages.size();
-    if (!messages.empty())
-    {
-        result.note += "; validation: " + messages.front();
-    }
-
-    const std::vector<float>& gpu_results = batch.results;
     std::vector<double> errors;
     errors.reserve(query_count * (eval_slot_end + sample_slot_end - sample_slot_begin + 3));
     std::size_t mismatches = 0;
@@ -176,6 +161,29 @@ ConformancePathResult run_gpu_path(const GpuPath& path, VulkanContext& context, 
     result.max_relative_error = errors.empty() ? 0.0 : errors.back();
     result.p999_relative_error = errors.empty() ? 0.0 : errors[std::size_t(0.999 * double(errors.size() - 1))];
     result.lobe_mismatch_fraction = query_count ? double(mismatches) / double(query_count) : 0.0;
+}
+
+ConformancePathResult run_gpu_path(const GpuPath& path, VulkanContext& context, const std::vector<float>& queries,
+                                   const std::vector<float>& materials, const std::vector<float>& cpu_results,
+                                   const ConformanceOptions& options)
+{
+    ConformancePathResult result;
+    result.name = path.name;
+    const std::size_t query_count = queries.size() / OPENPBR_QUERY_FLOATS;
+    context.clear_validation_messages();
+    const GpuBatchResult batch = execute_gpu_path(path, context, queries, materials, options.kernel_directory);
+    const DispatchTiming& timing = batch.timing;
+    result.executed = true;
+    result.note = context.device_name();
+    result.first_dispatch_ms = timing.first_dispatch_ms;
+    result.queries_per_second = timing.dispatch_ms > 0.0 ? double(query_count) / (timing.dispatch_ms * 1e-3) : 0.0;
+    const std::vector<std::string> messages = context.validation_messages();
+    result.validation_messages = messages.size();
+    if (!messages.empty())
+    {
+        result.note += "; validation: " + messages.front();
+    }
+    compare_with_cpu(result, queries, batch.results, cpu_results);
     return result;
 }
 
@@ -202,6 +210,8 @@ std::vector<std::string> known_conformance_paths()
     {
         names.push_back(path.name);
     }
+    names.push_back("cuda");
+    names.push_back("slang-cuda");
     return names;
 }
 
@@ -351,6 +361,29 @@ ConformanceReport run_conformance(const std::vector<Material>& materials, const 
             continue;
         }
         report.paths.push_back(run_gpu_path(path, *context, queries, packed, cpu_results, options));
+    }
+    // CUDA runs in its own program (built with nvcc); it says plainly when no device exists.
+    const bool wants_cuda = std::find(wanted.begin(), wanted.end(), "cuda") != wanted.end() ||
+                            std::find(wanted.begin(), wanted.end(), "slang-cuda") != wanted.end();
+    if (wants_cuda)
+    {
+        for (const ExternalPathResult& external :
+             run_cuda_conformance_program(default_cuda_conformance_program(), queries, packed))
+        {
+            if (std::find(wanted.begin(), wanted.end(), external.name) == wanted.end())
+            {
+                continue;
+            }
+            ConformancePathResult result;
+            result.name = external.name;
+            result.executed = external.executed;
+            result.note = external.note;
+            if (external.executed)
+            {
+                compare_with_cpu(result, queries, external.results, cpu_results);
+            }
+            report.paths.push_back(result);
+        }
     }
     return report;
 }

@@ -58,6 +58,7 @@ constexpr double minimum_alpha = 1e-4;
 
 constexpr int maximum_size_2d = 1024;
 constexpr int maximum_size_3d = 256;
+constexpr int maximum_size_4d = 64;
 
 void check_table(const int table)
 {
@@ -147,6 +148,7 @@ float sample_weight(const CellSetup& cell, const vec3 h)
     switch (cell.table)
     {
     case lut_table_ggx_albedo:
+    case lut_table_ggx_anisotropy_ratio:
         return reflection_weight(cell, h);
     case lut_table_dielectric_reflection:
         return openpbr_fresnel_dielectric(dot(cell.view, h), cell.eta) * reflection_weight(cell, h);
@@ -345,22 +347,41 @@ const char* lut_table_name(const int table)
 {
     check_table(table);
     static const char* const names[lut_table_count] = {"ggx_albedo", "dielectric_reflection",
-                                                       "dielectric_transmission", "dielectric_interface"};
+                                                       "dielectric_transmission", "dielectric_interface",
+                                                       "ggx_anisotropy_ratio"};
     return names[table];
 }
 
 int LutLayout::dimensions(const int table) const
 {
     check_table(table);
-    return table == lut_table_ggx_albedo ? 2 : 3;
+    return table == lut_table_ggx_albedo ? 2 : table == lut_table_ggx_anisotropy_ratio ? 4 : 3;
 }
 
-int LutLayout::size(const int table) const { return dimensions(table) == 2 ? size_2d : size_3d; }
+int LutLayout::size(const int table) const
+{
+    const int d = dimensions(table);
+    return d == 2 ? size_2d : d == 3 ? size_3d : size_4d;
+}
+
+int LutLayout::axis_size(const int table, const int axis) const
+{
+    if (axis < 0 || axis >= dimensions(table))
+    {
+        throw std::invalid_argument("lut_generator: table " + std::to_string(table) + " has no axis " +
+                                    std::to_string(axis));
+    }
+    return axis >= 2 && dimensions(table) == 4 ? size_4d_anisotropy : size(table);
+}
 
 std::size_t LutLayout::count(const int table) const
 {
-    const std::size_t n = std::size_t(std::max(size(table), 0));
-    return dimensions(table) == 2 ? n * n : n * n * n;
+    std::size_t result = 1;
+    for (int axis = 0; axis < dimensions(table); ++axis)
+    {
+        result *= std::size_t(std::max(axis_size(table, axis), 0));
+    }
+    return result;
 }
 
 std::size_t LutLayout::offset(const int table) const
@@ -387,10 +408,18 @@ static_assert(OPENPBR_LUT_DIELECTRIC_TRANSMISSION_OFFSET ==
 static_assert(OPENPBR_LUT_DIELECTRIC_INTERFACE_OFFSET ==
                   OPENPBR_LUT_DIELECTRIC_TRANSMISSION_OFFSET + OPENPBR_LUT_3D_COUNT,
               "table 3 must follow table 2");
-static_assert(OPENPBR_LUT_TOTAL_COUNT == OPENPBR_LUT_DIELECTRIC_INTERFACE_OFFSET + OPENPBR_LUT_3D_COUNT,
-              "table 3 must be the last table");
+static_assert(OPENPBR_LUT_GGX_ANISOTROPY_RATIO_OFFSET == OPENPBR_LUT_DIELECTRIC_INTERFACE_OFFSET + OPENPBR_LUT_3D_COUNT,
+              "table 4 must follow table 3");
+static_assert(OPENPBR_LUT_4D_COUNT == OPENPBR_LUT_4D_SIZE * OPENPBR_LUT_4D_SIZE * OPENPBR_LUT_4D_ANISOTROPY_SIZE *
+                                          OPENPBR_LUT_4D_ANISOTROPY_SIZE,
+              "table 4 has N x N x M x M nodes");
+static_assert(OPENPBR_LUT_TOTAL_COUNT == OPENPBR_LUT_GGX_ANISOTROPY_RATIO_OFFSET + OPENPBR_LUT_4D_COUNT,
+              "table 4 must be the last table");
 
-LutLayout compiled_lut_layout() { return LutLayout{OPENPBR_LUT_2D_SIZE, OPENPBR_LUT_3D_SIZE}; }
+LutLayout compiled_lut_layout()
+{
+    return LutLayout{OPENPBR_LUT_2D_SIZE, OPENPBR_LUT_3D_SIZE, OPENPBR_LUT_4D_SIZE, OPENPBR_LUT_4D_ANISOTROPY_SIZE};
+}
 
 // ---- Estimator -----------------------------------------------------------------------------
 
@@ -414,6 +443,45 @@ double lut_mu_from_coordinate(const double mu)
     return std::max(c * c, minimum_mu);
 }
 
+double lut_anisotropy_from_coordinate(const double a)
+{
+    const double c = 1.0 - std::clamp(a, 0.0, 1.0);
+    return 1.0 - c * c;
+}
+
+// The same expression as openpbr_lut_azimuth_coordinate (see there), in double.
+double lut_azimuth_coordinate(const double mu, const double r, const double a, const double cos_phi_squared)
+{
+    const double b = 1.0 - std::clamp(a, 0.0, 1.0);
+    const double cos_theta = std::clamp(mu, minimum_mu, 1.0);
+    const double alpha = lut_alpha_from_coordinate(r);
+    const double alpha_t_squared = alpha * alpha * (2.0 / (1.0 + b * b));
+    const double x = alpha_t_squared * (1.0 - cos_theta * cos_theta) / (cos_theta * cos_theta);
+    const double cos_squared = std::clamp(cos_phi_squared, 0.0, 1.0);
+    const double q_squared = cos_squared + b * b * (1.0 - cos_squared);
+    const double s_1 = std::sqrt(1.0 + x);
+    const double s_b = std::sqrt(1.0 + x * b * b);
+    const double s_q = std::sqrt(1.0 + x * q_squared);
+    return std::clamp(cos_squared * (s_1 + s_b) * (s_1 + 1.0) / ((s_q + s_b) * (s_q + 1.0)), 0.0, 1.0);
+}
+
+double lut_cos_phi_squared_from_coordinate(const double phi, const double mu, const double r, const double a)
+{
+    const double target = std::clamp(phi, 0.0, 1.0);
+    if (target <= 0.0 || target >= 1.0)
+    {
+        return target;  // the map fixes both ends
+    }
+    double low = 0.0;
+    double high = 1.0;
+    for (int iteration = 0; iteration < 64 && high - low > 1e-16; ++iteration)
+    {
+        const double middle = 0.5 * (low + high);
+        (lut_azimuth_coordinate(mu, r, a, middle) < target ? low : high) = middle;
+    }
+    return 0.5 * (low + high);
+}
+
 std::uint64_t lut_cell_seed(const int table, const std::size_t cell, const std::uint64_t generator_seed)
 {
     const std::uint64_t stream = mix64(generator_seed + 0x9E3779B97F4A7C15ull * std::uint64_t(table + 1));
@@ -423,31 +491,69 @@ std::uint64_t lut_cell_seed(const int table, const std::size_t cell, const std::
 double estimate_lut_entry(const int table, const double mu, const double r, const double x,
                           const std::uint32_t samples, const std::uint64_t seed)
 {
+    return estimate_lut_entry(table, mu, r, x, 0.0, samples, seed);
+}
+
+double estimate_lut_entry(const int table, const double mu, const double r, const double x, const double phi,
+                          const std::uint32_t samples, const std::uint64_t seed)
+{
     check_table(table);
     if (samples == 0)
     {
         throw std::invalid_argument("lut_generator: samples must be at least 1");
     }
     const double mu_value = lut_mu_from_coordinate(mu);
+    const double sin_theta = std::sqrt(1.0 - mu_value * mu_value);
     CellSetup cell;
     cell.table = table;
-    cell.view = vec3(float(std::sqrt(1.0 - mu_value * mu_value)), 0.0f, float(mu_value));
+    cell.view = vec3(float(sin_theta), 0.0f, float(mu_value));
     cell.alpha = vec2(float(lut_alpha_from_coordinate(r)));
     cell.eta = float(lut_eta_from_coordinate(x));
+    if (table == lut_table_ggx_anisotropy_ratio)
+    {
+        // OpenPBR's anisotropy mapping (openpbr_ggx_alpha) on the floored isotropic alpha, so at
+        // a = 0 both lobes are table 0's; the view azimuth follows from the phi coordinate.
+        const double r_value = std::clamp(r, 0.0, 1.0);
+        const double anisotropy = lut_anisotropy_from_coordinate(x);
+        const double b = 1.0 - anisotropy;
+        const double alpha_t = lut_alpha_from_coordinate(r_value) * std::sqrt(2.0 / (1.0 + b * b));
+        const double cos_phi_squared = lut_cos_phi_squared_from_coordinate(phi, mu_value, r_value, anisotropy);
+        cell.view = vec3(float(sin_theta * std::sqrt(cos_phi_squared)),
+                         float(sin_theta * std::sqrt(1.0 - cos_phi_squared)), float(mu_value));
+        cell.alpha = vec2(float(alpha_t), float(std::max(b * alpha_t, 1e-7)));
+        cell.eta = 1.0f;
+    }
     cell.lambda_view = openpbr_ggx_lambda(cell.view, cell.alpha);
     cell.inverse_g1_view = 1.0f + cell.lambda_view;
+    // Table 4's denominator: the isotropic lobe of table 0 at the same (rotated) view.
+    CellSetup isotropic_cell = cell;
+    isotropic_cell.alpha = vec2(float(lut_alpha_from_coordinate(r)));
+    isotropic_cell.lambda_view = openpbr_ggx_lambda(isotropic_cell.view, isotropic_cell.alpha);
+    isotropic_cell.inverse_g1_view = 1.0f + isotropic_cell.lambda_view;
 
     // Random digital shift (xor of the same random bits into every point): keeps the net
     // structure of the sequence and makes each cell's estimate unbiased and independent.
     const std::uint32_t shift_x = std::uint32_t(seed);
     const std::uint32_t shift_y = std::uint32_t(seed >> 32);
     double sum = 0.0;
+    double isotropic_sum = 0.0;
     for (std::uint32_t i = 0; i < samples; ++i)
     {
         const vec2 u(bits_to_unit_float(reverse_bits(i) ^ shift_x),
                      bits_to_unit_float(sobol_second_dimension(i) ^ shift_y));
         const vec3 h = openpbr_sample_vndf_spherical_cap(cell.view, cell.alpha, u);
         sum += double(sample_weight(cell, h));
+        if (table == lut_table_ggx_anisotropy_ratio)
+        {
+            // The same points for both lobes: their errors are correlated and largely cancel in
+            // the ratio, and at a = 0 (equal lobes) the ratio is exactly 1.
+            const vec3 isotropic_h = openpbr_sample_vndf_spherical_cap(isotropic_cell.view, isotropic_cell.alpha, u);
+            isotropic_sum += double(sample_weight(isotropic_cell, isotropic_h));
+        }
+    }
+    if (table == lut_table_ggx_anisotropy_ratio)
+    {
+        return isotropic_sum > 0.0 ? sum / isotropic_sum : 1.0;
     }
     return sum / double(samples);
 }
@@ -485,16 +591,19 @@ std::string describe(const LutGeneratorOptions& options)
 {
     const LutLayout layout = options.layout();
     std::ostringstream text;
-    text << "openpbr lutgen: 2D " << options.size_2d << ", 3D " << options.size_3d << ", " << options.samples
-         << " samples/cell, " << (options.bits == 16 ? "half-rounded" : "float32") << ", "
-         << (layout.size_2d >= 2 && layout.size_3d >= 2 ? layout.total_count() : 0) << " values";
+    const bool valid = layout.size_2d >= 2 && layout.size_3d >= 2 && layout.size_4d >= 2 && layout.size_4d_anisotropy >= 2;
+    text << "openpbr lutgen: 2D " << options.size_2d << ", 3D " << options.size_3d << ", 4D " << options.size_4d << "x"
+         << options.size_4d << "x" << options.size_4d_anisotropy << "x" << options.size_4d_anisotropy << ", "
+         << options.samples << " samples/cell, " << (options.bits == 16 ? "half-rounded" : "float32") << ", "
+         << (valid ? layout.total_count() : 0) << " values";
     if (options.seed != 0)
     {
         text << ", seed " << options.seed;
     }
     if (layout != compiled_lut_layout())
     {
-        text << " (not the compiled layout " << OPENPBR_LUT_2D_SIZE << " / " << OPENPBR_LUT_3D_SIZE << ")";
+        text << " (not the compiled layout " << OPENPBR_LUT_2D_SIZE << " / " << OPENPBR_LUT_3D_SIZE << " / "
+             << OPENPBR_LUT_4D_SIZE << " / " << OPENPBR_LUT_4D_ANISOTROPY_SIZE << ")";
     }
     return text.str();
 }
@@ -502,11 +611,14 @@ std::string describe(const LutGeneratorOptions& options)
 std::vector<float> generate_lut(const LutGeneratorOptions& options)
 {
     if (options.size_2d < 2 || options.size_2d > maximum_size_2d || options.size_3d < 2 ||
-        options.size_3d > maximum_size_3d)
+        options.size_3d > maximum_size_3d || options.size_4d < 2 || options.size_4d > maximum_size_4d ||
+        options.size_4d_anisotropy < 2 || options.size_4d_anisotropy > maximum_size_4d)
     {
         throw std::invalid_argument("lut_generator: table sizes must be in [2, " + std::to_string(maximum_size_2d) +
-                                    "] (2D) and [2, " + std::to_string(maximum_size_3d) + "] (3D), got " +
-                                    std::to_string(options.size_2d) + " and " + std::to_string(options.size_3d));
+                                    "] (2D), [2, " + std::to_string(maximum_size_3d) + "] (3D) and [2, " +
+                                    std::to_string(maximum_size_4d) + "] (4D), got " + std::to_string(options.size_2d) +
+                                    ", " + std::to_string(options.size_3d) + ", " + std::to_string(options.size_4d) +
+                                    " and " + std::to_string(options.size_4d_anisotropy));
     }
     if (options.samples == 0)
     {
@@ -540,13 +652,17 @@ std::vector<float> generate_lut(const LutGeneratorOptions& options)
             --table;
         }
         const std::size_t local = index - offsets[table];
-        const std::size_t n = std::size_t(layout.size(table));
-        const double scale = 1.0 / double(n - 1);
-        const double mu = double(local % n) * scale;
-        const double r = double((local / n) % n) * scale;
-        const double x = layout.dimensions(table) == 3 ? double(local / (n * n)) * scale : 0.5;
-        const double value =
-            estimate_lut_entry(table, mu, r, x, options.samples, lut_cell_seed(table, local, options.seed));
+        // Node coordinates, mu fastest; the x axis is eta (3D) or the anisotropy (4D).
+        double coordinates[4] = {0.0, 0.0, 0.5, 0.0};
+        std::size_t rest = local;
+        for (int axis = 0; axis < layout.dimensions(table); ++axis)
+        {
+            const std::size_t n = std::size_t(layout.axis_size(table, axis));
+            coordinates[axis] = double(rest % n) / double(n - 1);
+            rest /= n;
+        }
+        const double value = estimate_lut_entry(table, coordinates[0], coordinates[1], coordinates[2], coordinates[3],
+                                                options.samples, lut_cell_seed(table, local, options.seed));
         data[index] = options.bits == 16 ? round_to_half(float(value)) : float(value);
         progress.cell_done();
     };
@@ -709,7 +825,8 @@ double max_abs_difference(const std::vector<float>& a, const std::vector<float>&
     {
         throw std::invalid_argument("lut_generator: max_abs_difference needs two arrays of " + std::to_string(total) +
                                     " values (layout " + std::to_string(layout.size_2d) + " / " +
-                                    std::to_string(layout.size_3d) + "), got " + std::to_string(a.size()) +
+                                    std::to_string(layout.size_3d) + " / " + std::to_string(layout.size_4d) + " / " +
+                                    std::to_string(layout.size_4d_anisotropy) + "), got " + std::to_string(a.size()) +
                                     " and " + std::to_string(b.size()));
     }
     const std::size_t begin = layout.offset(table);

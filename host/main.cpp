@@ -6,6 +6,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "host/compile_targets.h"
 #include "host/conformance.h"
 #include "host/fuzz_fit.h"
 #include "host/lut_generator.h"
@@ -105,10 +106,20 @@ int main(int argc, char** argv)
                         "where openpbr_fuzz_ltc_values.inc and openpbr_fuzz_ltc.bin go")->capture_default_str();
     fuzzgen->add_flag("--progress", fuzz_options.progress, "print a progress line per 10 %");
 
+    CLI::App* compile = app.add_subcommand("compile", "emit the shaders of every target (SPIR-V, HLSL, Metal, CUDA, GLSL)");
+    openpbr::host::CompileTargetsOptions compile_options = openpbr::host::default_compile_targets_options();
+    compile->add_option("--target", compile_options.targets, "spirv, hlsl, metal, cuda, glsl or all")
+        ->delimiter(',')->check(CLI::IsMember({"spirv", "hlsl", "metal", "cuda", "glsl", "all"}));
+    compile->add_option("-o,--output-dir", compile_options.output_directory, "output directory")->required();
+
     CLI11_PARSE(app, argc, argv);
 
     try
     {
+        if (compile->parsed())
+        {
+            std::cout << openpbr::host::to_text(openpbr::host::compile_targets(compile_options));
+        }
         if (lutgen->parsed())
         {
             const std::vector<float> table = openpbr::host::generate_lut(lut_options);

@@ -94,20 +94,59 @@ struct OpenPBR_PreparedBsdf
     OpenPBR_HomogeneousVolume volume;    // interior medium (is_present false when none)
 };
 
-// Albedo-table roughness of an anisotropic lobe: the root mean square of (alpha_t, alpha_b),
-// which OpenPBR's anisotropy mapping keeps equal to r^2 (spec "Microfacet model"), so the
-// multiple-scattering loss is taken as that of the isotropic lobe of the same roughness.
-OPENPBR_FUNC float openpbr_projected_alpha(vec2 alpha, vec3 view)
+// The single-scattering albedos of one GGX lobe that compensation and layering read, for its
+// view (computed once in prepare).
+struct OpenPBR_GgxLobeAlbedo
 {
-    OPENPBR_UNUSED(view);
-    return sqrt(0.5f * (alpha.x * alpha.x + alpha.y * alpha.y));
+    // Alpha of the isotropic look-ups of E_T0 and E_RT: the root mean square of
+    // (alpha_t, alpha_b), which OpenPBR's anisotropy mapping keeps equal to r^2 (spec
+    // "Microfacet model").
+    float table_alpha;
+    // E, the F = 1 reflection albedo of the lobe itself at this view (Turquin compensation).
+    float albedo;
+    // E_R of an anisotropic lobe is approximated from the isotropic 3D table as
+    //   E_R(mu, alpha_view, eta) E / E(mu, alpha_view),
+    //   alpha_view^2 = mu^2 r^4 + (1 - mu^2) (alpha_t^2 cos^2 phi + alpha_b^2 sin^2 phi):
+    // the Fresnel factor sees mostly the slopes along the view azimuth (their projected
+    // roughness also gives the view's masking exactly, Heitz 2014), blended towards the
+    // azimuth-free r^2 at normal incidence; the ratio then carries the remaining difference of
+    // the shadowing loss. Scaling E_R(mu, r^2) by E / E(mu, r^2) instead misses the Fresnel
+    // shift (towards grazing along the smooth direction the visible normals cluster round the
+    // macro normal and E_R nearly doubles) and measured worse than no correction. E_T0 and E_RT
+    // keep r^2 unscaled: no such stand-in measured better. Isotropic lobes: table_alpha and 1.
+    float reflection_alpha;
+    float reflection_scale;
+};
+
+// Anisotropic lobes (anisotropy > 0) read the 4D table of E(mu, r, a, phi) / E(mu, r);
+// isotropic ones only the cheaper 2D table. roughness and anisotropy are those given to
+// openpbr_ggx_alpha for alpha; view is local (tangent along x).
+OPENPBR_FUNC OpenPBR_GgxLobeAlbedo openpbr_ggx_lobe_albedo(float roughness, float anisotropy, vec2 alpha, vec3 view)
+{
+    OpenPBR_GgxLobeAlbedo result;
+    result.table_alpha = sqrt(0.5f * (alpha.x * alpha.x + alpha.y * alpha.y));
+    result.albedo = openpbr_ggx_albedo(view.z, result.table_alpha);
+    result.reflection_alpha = result.table_alpha;
+    result.reflection_scale = 1.0f;
+    if (anisotropy > 0.0f)
+    {
+        const float cos_phi_squared = openpbr_cos_azimuth_squared(view);
+        result.albedo *= openpbr_ggx_anisotropy_ratio(view.z, roughness, anisotropy, cos_phi_squared);
+        const float mu_squared = view.z * view.z;
+        const float projected_alpha_squared =
+            alpha.x * alpha.x * cos_phi_squared + alpha.y * alpha.y * (1.0f - cos_phi_squared);
+        result.reflection_alpha =
+            sqrt(mu_squared * result.table_alpha * result.table_alpha + (1.0f - mu_squared) * projected_alpha_squared);
+        result.reflection_scale = result.albedo / max(openpbr_ggx_albedo(view.z, result.reflection_alpha), 1e-3f);
+    }
+    return result;
 }
 
 // Turquin 2019, "Practical multiple scattering compensation for microfacet models": scale the
-// single-scattering lobe by 1 + F0 (1 - E) / E, E the F = 1 albedo of the same roughness.
-OPENPBR_FUNC vec3 openpbr_multiple_scattering_compensation(vec3 f0, float mu, float alpha)
+// single-scattering lobe by 1 + F0 (1 - E) / E, E the F = 1 albedo of the same lobe.
+OPENPBR_FUNC vec3 openpbr_multiple_scattering_compensation(vec3 f0, float ggx_albedo)
 {
-    const float albedo = max(openpbr_ggx_albedo(mu, alpha), 1e-3f);
+    const float albedo = max(ggx_albedo, 1e-3f);
     return vec3(1.0f) + f0 * ((1.0f - albedo) / albedo);
 }
 
@@ -218,7 +257,9 @@ OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare_lobes(OPENPBR_IN(OpenPBR_Resol
         mix(inputs.specular_roughness,
             pow(min(1.0f, pow(inputs.specular_roughness, 4.0f) + 2.0f * pow(coat_roughness, 4.0f)), 0.25f), coat_weight);
     const vec2 alpha = openpbr_ggx_alpha(base_roughness, inputs.specular_roughness_anisotropy);
-    const float table_alpha = openpbr_projected_alpha(alpha, view);
+    const OpenPBR_GgxLobeAlbedo base_lobe_albedo =
+        openpbr_ggx_lobe_albedo(base_roughness, inputs.specular_roughness_anisotropy, alpha, view);
+    const float table_alpha = base_lobe_albedo.table_alpha;
 
     bsdf.probability_fuzz = 0.0f;
     bsdf.probability_coat = 0.0f;
@@ -272,14 +313,17 @@ OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare_lobes(OPENPBR_IN(OpenPBR_Resol
     // ---- Coat (spec "Coat"): C f_coat + lerp(1, T_coat (1 - E_coat), C) darkening f_base ----
     const vec2 coat_alpha = openpbr_ggx_alpha(coat_roughness, inputs.coat_roughness_anisotropy);
     const float coat_mu = bsdf.coat_view.z;
-    const float coat_table_alpha = openpbr_projected_alpha(coat_alpha, bsdf.coat_view);
+    const OpenPBR_GgxLobeAlbedo coat_lobe_albedo =
+        openpbr_ggx_lobe_albedo(coat_roughness, inputs.coat_roughness_anisotropy, coat_alpha, bsdf.coat_view);
     const OpenPBR_Fresnel coat_fresnel = openpbr_make_dielectric_fresnel(coat_ior, vec3(1.0f));
     const vec3 coat_compensation =
-        openpbr_multiple_scattering_compensation(vec3(openpbr_dielectric_f0(coat_ior)), coat_mu, coat_table_alpha);
+        openpbr_multiple_scattering_compensation(vec3(openpbr_dielectric_f0(coat_ior)), coat_lobe_albedo.albedo);
     bsdf.coat = openpbr_microfacet_reflection_lobe_init(coat_compensation * (under_fuzz * coat_weight), coat_alpha,
                                                         coat_fresnel, OPENPBR_LOBE_ID_COAT, 1.0f, bsdf.coat_view);
-    const float coat_single_albedo = bsdf.coat.is_delta ? openpbr_fresnel_dielectric(coat_mu, coat_ior)
-                                                        : openpbr_dielectric_reflection_albedo(coat_mu, coat_table_alpha, coat_ior);
+    const float coat_single_albedo =
+        bsdf.coat.is_delta ? openpbr_fresnel_dielectric(coat_mu, coat_ior)
+                           : openpbr_dielectric_reflection_albedo(coat_mu, coat_lobe_albedo.reflection_alpha, coat_ior) *
+                                 coat_lobe_albedo.reflection_scale;
     const float coat_albedo = min(coat_single_albedo * coat_compensation.x, 1.0f);
     const bool coat_absorbs = coat_weight > 0.0f && !(inputs.coat_color.x == 1.0f && inputs.coat_color.y == 1.0f &&
                                                       inputs.coat_color.z == 1.0f);
@@ -291,11 +335,13 @@ OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare_lobes(OPENPBR_IN(OpenPBR_Resol
     // Dielectric specular reflection, tinted by specular_color (reflection from above only).
     const OpenPBR_Fresnel dielectric_fresnel = openpbr_make_dielectric_fresnel(eta_channels.y, inputs.specular_color);
     const vec3 specular_compensation =
-        openpbr_multiple_scattering_compensation(vec3(openpbr_dielectric_f0(eta_channels.y)), mu, table_alpha);
+        openpbr_multiple_scattering_compensation(vec3(openpbr_dielectric_f0(eta_channels.y)), base_lobe_albedo.albedo);
     const float dielectric_weight = 1.0f - metalness;
     const bool specular_is_delta = openpbr_ggx_is_delta(alpha);
-    const float reflection_albedo = specular_is_delta ? openpbr_fresnel_dielectric(mu, eta_channels.y)
-                                                      : openpbr_dielectric_reflection_albedo(mu, table_alpha, eta_channels.y);
+    const float reflection_albedo =
+        specular_is_delta ? openpbr_fresnel_dielectric(mu, eta_channels.y)
+                          : openpbr_dielectric_reflection_albedo(mu, base_lobe_albedo.reflection_alpha, eta_channels.y) *
+                                base_lobe_albedo.reflection_scale;
     const vec3 specular_albedo = openpbr_saturate(inputs.specular_color * specular_compensation * reflection_albedo);
     const vec3 under_specular = vec3(1.0f) - specular_albedo;
 
@@ -337,7 +383,7 @@ OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare_lobes(OPENPBR_IN(OpenPBR_Resol
         1.0f / max(openpbr_dielectric_transmission_albedo(mu, table_alpha, eta_channels.y), 0.05f);
     bsdf.transmission = openpbr_dielectric_lobe_init(zero, transmission_weight * transmission_compensation, alpha,
                                                      eta_channels, false, OPENPBR_LOBE_ID_SPECULAR_TRANSMISSION, view);
-    const float thin_compensation = 1.0f / max(openpbr_ggx_albedo(mu, table_alpha), 0.05f);
+    const float thin_compensation = 1.0f / max(base_lobe_albedo.albedo, 0.05f);
     bsdf.thin_transmission = openpbr_microfacet_reflection_lobe_init(
         thin_transmission_weight * thin_compensation, alpha, no_fresnel, OPENPBR_LOBE_ID_SPECULAR_TRANSMISSION, -1.0f, view);
 
@@ -345,11 +391,11 @@ OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare_lobes(OPENPBR_IN(OpenPBR_Resol
     const vec3 metal_f0 = inputs.base_weight * inputs.base_color;
     const OpenPBR_Fresnel metal_fresnel =
         openpbr_make_f82_fresnel(metal_f0, inputs.specular_color, vec3(min(inputs.specular_weight, 1.0f)));
-    const vec3 metal_compensation = openpbr_multiple_scattering_compensation(metal_f0, mu, table_alpha);
+    const vec3 metal_compensation = openpbr_multiple_scattering_compensation(metal_f0, base_lobe_albedo.albedo);
     bsdf.metal = openpbr_microfacet_reflection_lobe_init(metal_compensation * metalness, alpha, metal_fresnel,
                                                          OPENPBR_LOBE_ID_METAL, 1.0f, view);
     const vec3 metal_albedo = openpbr_saturate(metal_compensation * openpbr_fresnel_evaluate(metal_fresnel, mu) *
-                                               (bsdf.metal.is_delta ? 1.0f : openpbr_ggx_albedo(mu, table_alpha))) *
+                                               (bsdf.metal.is_delta ? 1.0f : base_lobe_albedo.albedo)) *
                               metalness;
 
     // Albedo estimates of the base lobes (unit layering factor).

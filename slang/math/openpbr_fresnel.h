@@ -3,6 +3,7 @@
 #define OPENPBR_FRESNEL_H
 
 #include "openpbr_math.h"
+#include "openpbr_thin_film.h"
 
 OPENPBR_NAMESPACE_BEGIN
 
@@ -84,6 +85,15 @@ struct OpenPBR_Fresnel
     vec3 f0;                 // F82: reflectance at normal incidence (base_weight * base_color)
     vec3 f82_coefficient;    // F82: from openpbr_f82_coefficient
     vec3 tint;               // multiplies the result, e.g. specular_color * specular_weight for metals
+    // Thin-film iridescence (spec "Thin-film iridescence"): a linear blend of the Fresnel factor
+    // with and without the film, by film_weight; 0 = no film (nothing else is read then).
+    float film_weight;        // e.g. 0.5
+    float film_thickness_um;  // e.g. 0.5 (500 nm)
+    float film_ior;           // e.g. 1.4
+    float outside_ior;        // absolute IOR above the film, e.g. 1 (air) or the coat's
+    float base_ior;           // dielectric: absolute IOR below the film
+    vec3 base_n;              // conductor: complex IOR below the film (Gulbrandsen 2014)
+    vec3 base_k;
 };
 
 OPENPBR_FUNC OpenPBR_Fresnel openpbr_make_dielectric_fresnel(float eta, vec3 tint)
@@ -94,17 +104,27 @@ OPENPBR_FUNC OpenPBR_Fresnel openpbr_make_dielectric_fresnel(float eta, vec3 tin
     fresnel.f0 = vec3(openpbr_dielectric_f0(eta));
     fresnel.f82_coefficient = vec3(0.0f);
     fresnel.tint = tint;
+    fresnel.film_weight = 0.0f;
+    fresnel.film_thickness_um = 0.0f;
+    fresnel.film_ior = 1.0f;
+    fresnel.outside_ior = 1.0f;
+    fresnel.base_ior = eta;
+    fresnel.base_n = vec3(1.0f);
+    fresnel.base_k = vec3(0.0f);
     return fresnel;
 }
 
 OPENPBR_FUNC OpenPBR_Fresnel openpbr_make_f82_fresnel(vec3 f0, vec3 edge_tint, vec3 tint)
 {
-    OpenPBR_Fresnel fresnel;
+    OpenPBR_Fresnel fresnel = openpbr_make_dielectric_fresnel(1.0f, tint);
     fresnel.kind = OPENPBR_FRESNEL_F82;
-    fresnel.eta = 1.0f;
     fresnel.f0 = f0;
     fresnel.f82_coefficient = openpbr_f82_coefficient(f0, edge_tint);
-    fresnel.tint = tint;
+    // The conductor's complex IOR for the film from (F0, edge tint), Gulbrandsen 2014; F82-tint
+    // itself defines none, and the spec asks for "some reasonable approximation".
+    const vec3 r = clamp(f0, vec3(0.0f), vec3(0.9999f));
+    fresnel.base_n = openpbr_gulbrandsen_n(r, clamp(edge_tint, vec3(0.0f), vec3(1.0f)));
+    fresnel.base_k = openpbr_gulbrandsen_k(r, fresnel.base_n);
     return fresnel;
 }
 
@@ -115,17 +135,39 @@ OPENPBR_FUNC OpenPBR_Fresnel openpbr_make_constant_fresnel(vec3 tint)
     return fresnel;
 }
 
+// Puts a film of the given weight, thickness (micrometers) and IOR on a Fresnel factor, with
+// the medium above the film of absolute IOR outside_ior (the base IOR follows from eta).
+OPENPBR_FUNC OpenPBR_Fresnel openpbr_add_thin_film(OPENPBR_IN(OpenPBR_Fresnel) fresnel, float weight, float thickness_um,
+                                                   float film_ior, float outside_ior)
+{
+    OpenPBR_Fresnel filmed = fresnel;
+    filmed.film_weight = fresnel.kind == OPENPBR_FRESNEL_NONE ? 0.0f : weight;
+    filmed.film_thickness_um = thickness_um;
+    filmed.film_ior = film_ior;
+    filmed.outside_ior = outside_ior;
+    filmed.base_ior = fresnel.eta * outside_ior;
+    return filmed;
+}
+
 OPENPBR_FUNC vec3 openpbr_fresnel_evaluate(OPENPBR_IN(OpenPBR_Fresnel) fresnel, float cos_theta)
 {
     if (fresnel.kind == OPENPBR_FRESNEL_NONE)
     {
         return fresnel.tint;
     }
-    if (fresnel.kind == OPENPBR_FRESNEL_F82)
+    const vec3 plain = fresnel.kind == OPENPBR_FRESNEL_F82
+                           ? openpbr_fresnel_f82(fresnel.f0, fresnel.f82_coefficient, cos_theta)
+                           : vec3(openpbr_fresnel_dielectric(cos_theta, fresnel.eta));
+    if (!(fresnel.film_weight > 0.0f))
     {
-        return fresnel.tint * openpbr_fresnel_f82(fresnel.f0, fresnel.f82_coefficient, cos_theta);
+        return fresnel.tint * plain;
     }
-    return fresnel.tint * openpbr_fresnel_dielectric(cos_theta, fresnel.eta);
+    const vec3 film = fresnel.kind == OPENPBR_FRESNEL_F82
+                          ? openpbr_thin_film_fresnel_conductor(cos_theta, fresnel.outside_ior, fresnel.film_ior,
+                                                                fresnel.base_n, fresnel.base_k, fresnel.film_thickness_um)
+                          : openpbr_thin_film_fresnel_dielectric(cos_theta, fresnel.outside_ior, fresnel.film_ior,
+                                                                 fresnel.base_ior, fresnel.film_thickness_um);
+    return fresnel.tint * mix(plain, film, fresnel.film_weight);
 }
 
 OPENPBR_NAMESPACE_END

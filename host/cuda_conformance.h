@@ -1,0 +1,37 @@
+// The CUDA conformance paths ("cuda": the headers through their CUDA backend; "slang-cuda":
+// Slang's CUDA output) run in a separate program, openpbr_cuda_conformance (built by
+// targets/CMakeLists.txt when nvcc is found), which exchanges raw float32 files with the host:
+//   inputs  DIR/queries.f32, DIR/materials.f32, DIR/lut.f32, DIR/fuzz_ltc.f32
+//   outputs DIR/cuda.results.f32, DIR/slang-cuda.results.f32 (records of
+//           targets/kernels/openpbr_conformance_kernel.h)
+// The host compares the results with the CPU build like any GPU path's.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace openpbr::host {
+
+// Writes the input files of a batch (the tables are the shipped ones, as on the Vulkan paths).
+void write_conformance_inputs(const std::string& directory, const std::vector<float>& queries,
+                              const std::vector<float>& materials);
+
+struct ExternalPathResult
+{
+    std::string name;           // "cuda" or "slang-cuda"
+    bool executed = false;
+    std::string note;           // the program's line, e.g. "skipped: no CUDA device (...)"
+    std::vector<float> results; // when executed: OPENPBR_RESULT_FLOATS per query
+};
+
+// The program this build knows (empty when nvcc was not found at configure time).
+std::string default_cuda_conformance_program();
+
+// Runs the program on a batch in a fresh temporary directory; one entry per CUDA path, in the
+// order cuda, slang-cuda. A missing program, no device (exit 77) or an error gives entries with
+// executed = false and the reason in note; never throws for those.
+std::vector<ExternalPathResult> run_cuda_conformance_program(const std::string& program,
+                                                            const std::vector<float>& queries,
+                                                            const std::vector<float>& materials);
+
+}  // namespace openpbr::host
