@@ -11,6 +11,7 @@
 #include "host/fuzz_fit.h"
 #include "host/lut_generator.h"
 #include "host/material_library.h"
+#include "host/render_command.h"
 
 #ifndef OPENPBR_DEFAULT_MATERIALS_DIR
 #define OPENPBR_DEFAULT_MATERIALS_DIR "materials"
@@ -112,7 +113,14 @@ int main(int argc, char** argv)
         ->delimiter(',')->check(CLI::IsMember({"spirv", "hlsl", "metal", "cuda", "glsl", "all"}));
     compile->add_option("-o,--output-dir", compile_options.output_directory, "output directory")->required();
 
+    openpbr::host::RenderCommand render = openpbr::host::add_render_subcommand(app);
+
     CLI11_PARSE(app, argc, argv);
+
+    if (render.subcommand->parsed())
+    {
+        return openpbr::host::run_render_command(render, materials_directory, kernel_directory);
+    }
 
     try
     {

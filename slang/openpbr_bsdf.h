@@ -125,10 +125,13 @@ OPENPBR_FUNC OpenPBR_GgxLobeAlbedo openpbr_ggx_lobe_albedo(float roughness, floa
 {
     OpenPBR_GgxLobeAlbedo result;
     result.table_alpha = sqrt(0.5f * (alpha.x * alpha.x + alpha.y * alpha.y));
-    result.albedo = openpbr_ggx_albedo(view.z, result.table_alpha);
+    // A delta lobe scatters once: albedo 1 exactly, so no compensation is applied to it (the
+    // tables near alpha = 0 are close to 1 but not exactly at grazing angles).
+    const bool is_delta = openpbr_ggx_is_delta(alpha);
+    result.albedo = is_delta ? 1.0f : openpbr_ggx_albedo(view.z, result.table_alpha);
     result.reflection_alpha = result.table_alpha;
     result.reflection_scale = 1.0f;
-    if (anisotropy > 0.0f)
+    if (anisotropy > 0.0f && !is_delta)
     {
         const float cos_phi_squared = openpbr_cos_azimuth_squared(view);
         result.albedo *= openpbr_ggx_anisotropy_ratio(view.z, roughness, anisotropy, cos_phi_squared);
@@ -238,7 +241,9 @@ OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare_lobes(OPENPBR_IN(OpenPBR_Resol
     bsdf.fuzz_view.z = max(bsdf.fuzz_view.z, 0.0f);
     const vec3 view = bsdf.view;
     const float mu = view.z;
-    bsdf.volume = openpbr_make_volume(inputs);
+    // The interior medium exists only where light can enter (the volume helper returns an empty
+    // one otherwise too; the branch skips its set-up for opaque and thin-walled materials).
+    bsdf.volume = (entering_weight > 0.0f && !thin_walled) ? openpbr_make_volume(inputs) : openpbr_make_empty_volume();
     bsdf.emission = vec3(0.0f);
     bsdf.pass_through_weight = vec3(1.0f - opacity);
 
@@ -293,7 +298,9 @@ OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare_lobes(OPENPBR_IN(OpenPBR_Resol
         // Fresnel, total internal reflection and energy compensation 1 / E_RT. Light leaving
         // crosses the coat once and the fuzz (approximated as view-independent factors).
         const vec3 eta_inside = vec3(1.0f) / eta_channels;
-        const float compensation = 1.0f / max(openpbr_dielectric_interface_albedo(mu, table_alpha, eta_inside.y), 0.05f);
+        const float compensation =
+            openpbr_ggx_is_delta(alpha) ? 1.0f
+                                        : 1.0f / max(openpbr_dielectric_interface_albedo(mu, table_alpha, eta_inside.y), 0.05f);
         const vec3 exit_factor = mix(vec3(1.0f), sqrt(inputs.coat_color), coat_weight) *
                                  (1.0f - fuzz_weight * openpbr_fuzz_albedo_white(1.0f, inputs.fuzz_roughness));
         const float weight = opacity * compensation;
@@ -333,15 +340,34 @@ OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare_lobes(OPENPBR_IN(OpenPBR_Resol
 
     // ---- Base substrate, with unit layering factor first (albedos feed darkening) ----
     // Dielectric specular reflection, tinted by specular_color (reflection from above only).
-    const OpenPBR_Fresnel dielectric_fresnel = openpbr_make_dielectric_fresnel(eta_channels.y, inputs.specular_color);
+    // Thin film on the base (spec "Thin-film iridescence"): over the metal and the dielectric,
+    // under the coat; the medium above it is the coat where there is one (IOR blended by
+    // coat_weight, the spec's "depending on coat coverage").
+    const float film_weight = inputs.thin_film_weight;
+    const float film_outside_ior = mix(1.0f, coat_ior, coat_weight);
+    const OpenPBR_Fresnel dielectric_fresnel =
+        openpbr_add_thin_film(openpbr_make_dielectric_fresnel(eta_channels.y, inputs.specular_color), film_weight,
+                              inputs.thin_film_thickness, inputs.thin_film_ior, film_outside_ior);
     const vec3 specular_compensation =
         openpbr_multiple_scattering_compensation(vec3(openpbr_dielectric_f0(eta_channels.y)), base_lobe_albedo.albedo);
     const float dielectric_weight = 1.0f - metalness;
     const bool specular_is_delta = openpbr_ggx_is_delta(alpha);
-    const float reflection_albedo =
+    const float plain_reflection_albedo =
         specular_is_delta ? openpbr_fresnel_dielectric(mu, eta_channels.y)
                           : openpbr_dielectric_reflection_albedo(mu, base_lobe_albedo.reflection_alpha, eta_channels.y) *
                                 base_lobe_albedo.reflection_scale;
+    // With a film, E[f^R] moves by the film's change of the Fresnel factor at the view times
+    // the lobe's F = 1 albedo (the tables hold no film): an estimate, exact for a mirror.
+    vec3 reflection_albedo = vec3(plain_reflection_albedo);
+    if (film_weight > 0.0f)
+    {
+        OpenPBR_Fresnel untinted = dielectric_fresnel;
+        untinted.tint = vec3(1.0f);
+        reflection_albedo = max(reflection_albedo + (openpbr_fresnel_evaluate(untinted, mu) -
+                                                     vec3(openpbr_fresnel_dielectric(mu, eta_channels.y))) *
+                                                        base_lobe_albedo.albedo,
+                                vec3(0.0f));
+    }
     const vec3 specular_albedo = openpbr_saturate(inputs.specular_color * specular_compensation * reflection_albedo);
     const vec3 under_specular = vec3(1.0f) - specular_albedo;
 
@@ -389,8 +415,9 @@ OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare_lobes(OPENPBR_IN(OpenPBR_Resol
 
     // Metal: F82-tint Fresnel, F0 = base_weight base_color, scaled by specular_weight.
     const vec3 metal_f0 = inputs.base_weight * inputs.base_color;
-    const OpenPBR_Fresnel metal_fresnel =
-        openpbr_make_f82_fresnel(metal_f0, inputs.specular_color, vec3(min(inputs.specular_weight, 1.0f)));
+    const OpenPBR_Fresnel metal_fresnel = openpbr_add_thin_film(
+        openpbr_make_f82_fresnel(metal_f0, inputs.specular_color, vec3(min(inputs.specular_weight, 1.0f))), film_weight,
+        inputs.thin_film_thickness, inputs.thin_film_ior, film_outside_ior);
     const vec3 metal_compensation = openpbr_multiple_scattering_compensation(metal_f0, base_lobe_albedo.albedo);
     bsdf.metal = openpbr_microfacet_reflection_lobe_init(metal_compensation * metalness, alpha, metal_fresnel,
                                                          OPENPBR_LOBE_ID_METAL, 1.0f, view);

@@ -1,0 +1,684 @@
+// The body of the preview path tracer, shared by every backend: the Slang compute kernel
+// (render.slang) and the CPU renderer (host/render.cpp) include this same text, so both run
+// identical code (one pixel sample per call of openpbr_render_sample).
+//
+// Scene (one per gallery cell, in the cell's own coordinates): a sphere of radius R centred at
+// the origin carrying the cell's material, a ground plane y = -R (a neutral OpenPBR material
+// with a checker on its base color), a gradient sky with a soft sun glow (or a uniform
+// environment), and one spherical area light. Everything is analytic (ray-sphere, ray-plane).
+//
+// Integrator: unidirectional path tracing. Next-event estimation towards one emitter per
+// vertex, chosen uniformly among the area light and (from the ground) the cell's sphere when
+// its material emits, combined with BSDF sampling by multiple importance sampling (power
+// heuristic, the emitter's pdf including its selection probability); BSDF sampling through
+// openpbr_sample; Russian roulette after RR_DEPTH events (survival max(throughput) capped at
+// 1); at most MAX_DEPTH surface events and MAX_VOLUME_EVENTS scattering events in a medium.
+// A path that transmits into a non-thin-walled sphere is inside its medium until it transmits
+// out: distances are sampled with openpbr_volume_sample_distance (spectral MIS over the
+// channels) and directions with the Henyey-Greenstein phase function; there is no next-event
+// estimation at medium scattering events (only at the interface, where a rough interface seen
+// from inside transmits the light in). Thin-walled spheres have no interior. Dispersive
+// materials (openpbr_needs_rgb_wavelengths) get one wavelength per RGB channel per path,
+// uniform in the channel's box: B 400-500 nm, G 500-600 nm, R 600-700 nm (the pixel average
+// integrates each channel over its box); others use the library's default wavelengths.
+//
+// Random numbers: a PCG hash (O'Neill 2014; the 32-bit RXS-M-XS output permutation) of
+// (seed, pixel, sample, bounce, dimension), so any sample of any pixel is reproducible alone.
+//
+// Accumulation record per pixel (OPENPBR_RENDER_ACCUMULATION_FLOATS floats): sum of the
+// radiance (3), sum of its square (3), number of non-finite samples (set to 0 and counted),
+// number of samples whose camera ray hit the sphere.
+//
+// The includer defines OPENPBR_RENDER_PARAMETER(index) -> uint, OPENPBR_RENDER_SCENE(index)
+// -> float, OPENPBR_RENDER_MATERIAL(index) -> float, OPENPBR_RENDER_ACCUMULATION_READ(index)
+// -> float and OPENPBR_RENDER_ACCUMULATION_WRITE(index, value), and has the OpenPBR API in
+// scope. The kernel does not use openpbr_unpack_material (its read macro is fixed per
+// program in C++: two different definitions of that inline function would violate the ODR);
+// it expands the same field list (OPENPBR_MATERIAL_FIELDS) into its own reader.
+#ifndef OPENPBR_RENDER_KERNEL_H
+#define OPENPBR_RENDER_KERNEL_H
+
+#include "../../slang/openpbr_material_packing.h"
+
+// ---- Parameter buffer (uint) ----
+#define OPENPBR_RENDER_PARAMETER_WIDTH 0
+#define OPENPBR_RENDER_PARAMETER_HEIGHT 1
+#define OPENPBR_RENDER_PARAMETER_SAMPLE_BEGIN 2
+#define OPENPBR_RENDER_PARAMETER_SAMPLE_END 3
+#define OPENPBR_RENDER_PARAMETER_SEED 4
+#define OPENPBR_RENDER_PARAMETER_CELL_SIZE 5
+#define OPENPBR_RENDER_PARAMETER_COLUMNS 6
+#define OPENPBR_RENDER_PARAMETER_CELL_COUNT 7       // cells with a sphere (= materials shown)
+#define OPENPBR_RENDER_PARAMETER_GROUND_MATERIAL 8  // index of the ground's packed material
+#define OPENPBR_RENDER_PARAMETER_FLAGS 9
+#define OPENPBR_RENDER_PARAMETER_MAX_DEPTH 10
+#define OPENPBR_RENDER_PARAMETER_MAX_VOLUME_EVENTS 11
+#define OPENPBR_RENDER_PARAMETER_RR_DEPTH 12
+#define OPENPBR_RENDER_PARAMETER_COUNT 16
+
+#define OPENPBR_RENDER_FLAG_GROUND 1u
+#define OPENPBR_RENDER_FLAG_LIGHT 2u
+#define OPENPBR_RENDER_FLAG_SKY 4u  // gradient sky; otherwise the uniform environment
+
+// ---- Scene buffer (float) ----
+#define OPENPBR_RENDER_SCENE_CAMERA_POSITION 0   // 3
+#define OPENPBR_RENDER_SCENE_CAMERA_FORWARD 3    // 3, unit
+#define OPENPBR_RENDER_SCENE_CAMERA_RIGHT 6      // 3, scaled by tan(fov / 2)
+#define OPENPBR_RENDER_SCENE_CAMERA_UP 9         // 3, scaled by tan(fov / 2)
+#define OPENPBR_RENDER_SCENE_SPHERE_RADIUS 12
+#define OPENPBR_RENDER_SCENE_LIGHT_CENTER 13     // 3
+#define OPENPBR_RENDER_SCENE_LIGHT_RADIUS 16
+#define OPENPBR_RENDER_SCENE_LIGHT_RADIANCE 17   // 3, render units
+#define OPENPBR_RENDER_SCENE_SKY_ZENITH 20       // 3
+#define OPENPBR_RENDER_SCENE_SKY_HORIZON 23      // 3
+#define OPENPBR_RENDER_SCENE_ENVIRONMENT 26      // 3: uniform environment, or the sky below the horizon
+#define OPENPBR_RENDER_SCENE_SUN_DIRECTION 29    // 3, unit
+#define OPENPBR_RENDER_SCENE_SUN_GLOW 32         // 3
+#define OPENPBR_RENDER_SCENE_SUN_EXPONENT 35
+#define OPENPBR_RENDER_SCENE_NITS_TO_UNITS 36    // render units per nit (emission)
+#define OPENPBR_RENDER_SCENE_CHECKER_SIZE 37
+#define OPENPBR_RENDER_SCENE_CHECKER_DARK 38     // base_color factor of the dark squares
+#define OPENPBR_RENDER_SCENE_DEFAULT_WAVELENGTHS 39  // 3: OPENPBR_DEFAULT_RGB_WAVELENGTHS_NM
+#define OPENPBR_RENDER_SCENE_COUNT 44
+
+#define OPENPBR_RENDER_ACCUMULATION_FLOATS 8
+
+// The library's macros do not cross the Slang module boundary, so the kernel spells the few it
+// needs itself (host/render.cpp checks them against the library's with static_assert).
+#define OPENPBR_RENDER_FLOAT_MAX 3.40282347e+38f
+#define OPENPBR_RENDER_TWO_PI 6.28318530717958647692f
+#define OPENPBR_RENDER_LOBE_TYPE_SPECULAR 16u
+
+// Hit kinds.
+#define OPENPBR_RENDER_HIT_NONE 0u
+#define OPENPBR_RENDER_HIT_SPHERE 1u
+#define OPENPBR_RENDER_HIT_GROUND 2u
+#define OPENPBR_RENDER_HIT_LIGHT 3u
+
+// Random-number dimensions per bounce.
+#define OPENPBR_RENDER_DIMENSION_LIGHT_U 0u
+#define OPENPBR_RENDER_DIMENSION_LIGHT_V 1u
+#define OPENPBR_RENDER_DIMENSION_EMITTER_U 2u  // which emitter
+#define OPENPBR_RENDER_DIMENSION_BSDF 4u  // 3 numbers
+#define OPENPBR_RENDER_DIMENSION_ROULETTE 7u
+#define OPENPBR_RENDER_DIMENSION_VOLUME 8u  // 4 numbers: channel, distance, phase (2)
+#define OPENPBR_RENDER_DIMENSION_CAMERA 12u  // bounce 0 only: 2 jitter, 3 wavelengths
+#define OPENPBR_RENDER_DIMENSIONS_PER_BOUNCE 16u
+
+OPENPBR_NAMESPACE_BEGIN
+
+struct OpenPBR_RenderSample
+{
+    vec3 radiance;    // 0 when the sample was non-finite
+    bool hit_object;  // the camera ray hit the sphere
+    bool nonfinite;   // a non-finite value was met (and replaced by 0)
+};
+
+struct OpenPBR_RenderCone
+{
+    vec3 direction;
+    float pdf;       // solid angle
+    float distance;  // to the sphere's surface
+    bool valid;
+};
+
+// ---- Random numbers ----
+
+OPENPBR_FUNC uint openpbr_render_hash(uint value)
+{
+    const uint state = value * 747796405u + 2891336453u;
+    const uint word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
+    return (word >> 22u) ^ word;
+}
+
+OPENPBR_FUNC uint openpbr_render_path_key(uint seed, uint pixel, uint sample_index)
+{
+    return openpbr_render_hash(seed ^ openpbr_render_hash(pixel ^ openpbr_render_hash(sample_index + 0x9e3779b9u)));
+}
+
+// Uniform in [0, 1 - 2^-24]: 24 bits, exactly representable, never 1.
+OPENPBR_FUNC float openpbr_render_random(uint path_key, uint bounce, uint dimension)
+{
+    const uint bits = openpbr_render_hash(path_key ^ openpbr_render_hash(bounce * OPENPBR_RENDER_DIMENSIONS_PER_BOUNCE + dimension));
+    return float(bits >> 8u) * (1.0f / 16777216.0f);
+}
+
+// ---- Buffers ----
+
+OPENPBR_FUNC vec3 openpbr_render_scene_vec3(uint index)
+{
+    return vec3(OPENPBR_RENDER_SCENE(index), OPENPBR_RENDER_SCENE(index + 1u), OPENPBR_RENDER_SCENE(index + 2u));
+}
+
+#define OPENPBR_RENDER_UNPACK_FLOAT(name) material.name = OPENPBR_RENDER_MATERIAL(index); index += 1u;
+#define OPENPBR_RENDER_UNPACK_COLOR(name)                                                                  \
+    material.name = vec3(OPENPBR_RENDER_MATERIAL(index), OPENPBR_RENDER_MATERIAL(index + 1u),             \
+                         OPENPBR_RENDER_MATERIAL(index + 2u));                                              \
+    index += 3u;
+#define OPENPBR_RENDER_UNPACK_VECTOR2(name) \
+    material.name = vec2(OPENPBR_RENDER_MATERIAL(index), OPENPBR_RENDER_MATERIAL(index + 1u)); index += 2u;
+#define OPENPBR_RENDER_UNPACK_BOOL(name) material.name = OPENPBR_RENDER_MATERIAL(index) != 0.0f; index += 1u;
+#define OPENPBR_RENDER_UNPACK_BASIS(name)                                                                  \
+    OPENPBR_RENDER_UNPACK_COLOR(name.tangent) OPENPBR_RENDER_UNPACK_COLOR(name.bitangent)                  \
+    OPENPBR_RENDER_UNPACK_COLOR(name.normal)
+
+OPENPBR_FUNC OpenPBR_ResolvedInputs openpbr_render_unpack_material(uint material_index)
+{
+    OpenPBR_ResolvedInputs material = openpbr_make_default_resolved_inputs();
+    uint index = material_index * uint(OPENPBR_PACKED_MATERIAL_FLOATS);
+    OPENPBR_MATERIAL_FIELDS(OPENPBR_RENDER_UNPACK_FLOAT, OPENPBR_RENDER_UNPACK_COLOR, OPENPBR_RENDER_UNPACK_VECTOR2,
+                            OPENPBR_RENDER_UNPACK_BOOL, OPENPBR_RENDER_UNPACK_BASIS)
+    return material;
+}
+
+#undef OPENPBR_RENDER_UNPACK_FLOAT
+#undef OPENPBR_RENDER_UNPACK_COLOR
+#undef OPENPBR_RENDER_UNPACK_VECTOR2
+#undef OPENPBR_RENDER_UNPACK_BOOL
+#undef OPENPBR_RENDER_UNPACK_BASIS
+
+// ---- Geometry ----
+
+// Nearest hit of the ray with a sphere beyond t_min, or -1. The discriminant is formed from the
+// distance of the centre to the ray (Haines et al., "Precision improvements for ray/sphere
+// intersection", Ray Tracing Gems 2019), which keeps it accurate for distant spheres.
+OPENPBR_FUNC float openpbr_render_intersect_sphere(vec3 origin, vec3 direction, vec3 center, float radius, float t_min)
+{
+    const vec3 offset = origin - center;
+    const float b = dot(offset, direction);
+    const vec3 closest = offset - direction * b;
+    const float discriminant = radius * radius - dot(closest, closest);
+    if (!(discriminant >= 0.0f))
+    {
+        return -1.0f;
+    }
+    const float root = sqrt(discriminant);
+    // The near root from the numerically stable pair (q = -b - sign(b) root).
+    const float q = b >= 0.0f ? -b - root : -b + root;
+    const float c = dot(offset, offset) - radius * radius;
+    const float t0 = b >= 0.0f ? c / q : q;
+    const float t1 = b >= 0.0f ? q : c / q;
+    const float near_t = min(t0, t1);
+    const float far_t = max(t0, t1);
+    if (near_t > t_min)
+    {
+        return near_t;
+    }
+    if (far_t > t_min)
+    {
+        return far_t;
+    }
+    return -1.0f;
+}
+
+OPENPBR_FUNC float openpbr_render_intersect_ground(vec3 origin, vec3 direction, float ground_y, float t_min)
+{
+    if (direction.y == 0.0f)
+    {
+        return -1.0f;
+    }
+    const float t = (ground_y - origin.y) / direction.y;
+    return t > t_min ? t : -1.0f;
+}
+
+// Uniform sampling of the cone of directions a sphere subtends (the solid angle it covers).
+OPENPBR_FUNC OpenPBR_RenderCone openpbr_render_sample_cone(vec3 position, vec3 center, float radius, vec2 u)
+{
+    OpenPBR_RenderCone cone;
+    cone.direction = vec3(0.0f, 0.0f, 1.0f);
+    cone.pdf = 0.0f;
+    cone.distance = 0.0f;
+    cone.valid = false;
+    const vec3 to_center = center - position;
+    const float distance_squared = dot(to_center, to_center);
+    const float radius_squared = radius * radius;
+    if (!(distance_squared > radius_squared * 1.0001f))
+    {
+        return cone;
+    }
+    const float sin_squared_max = radius_squared / distance_squared;
+    const float cos_max = sqrt(max(1.0f - sin_squared_max, 0.0f));
+    const float one_minus_cos_max = sin_squared_max / (1.0f + cos_max);  // 1 - cos_max without cancellation
+    const float one_minus_cos = u.x * one_minus_cos_max;
+    const float cos_theta = 1.0f - one_minus_cos;
+    const float sin_theta = sqrt(max(one_minus_cos * (2.0f - one_minus_cos), 0.0f));
+    const float phi = OPENPBR_RENDER_TWO_PI * u.y;
+    const float distance_to_center = sqrt(distance_squared);
+    const OpenPBR_Basis frame = openpbr_make_basis(to_center / distance_to_center);
+    cone.direction = openpbr_to_world(frame, vec3(sin_theta * cos(phi), sin_theta * sin(phi), cos_theta));
+    cone.pdf = 1.0f / (OPENPBR_RENDER_TWO_PI * one_minus_cos_max);
+    // Distance to the near side along the sampled direction (the direction lies in the cone).
+    const float across = distance_squared * sin_theta * sin_theta;
+    cone.distance = max(distance_to_center * cos_theta - sqrt(max(radius_squared - across, 0.0f)), 0.0f);
+    cone.valid = cone.pdf > 0.0f && cone.pdf <= OPENPBR_RENDER_FLOAT_MAX;
+    return cone;
+}
+
+OPENPBR_FUNC float openpbr_render_cone_pdf(vec3 position, vec3 center, float radius)
+{
+    const vec3 to_center = center - position;
+    const float distance_squared = dot(to_center, to_center);
+    const float radius_squared = radius * radius;
+    if (!(distance_squared > radius_squared * 1.0001f))
+    {
+        return 0.0f;
+    }
+    const float sin_squared_max = radius_squared / distance_squared;
+    const float cos_max = sqrt(max(1.0f - sin_squared_max, 0.0f));
+    return 1.0f / (OPENPBR_RENDER_TWO_PI * (sin_squared_max / (1.0f + cos_max)));
+}
+
+// Power heuristic (Veach 1997, beta = 2) for the technique with density `a` against `b`.
+OPENPBR_FUNC float openpbr_render_power_heuristic(float a, float b)
+{
+    const float a2 = a * a;
+    const float b2 = b * b;
+    return a2 + b2 > 0.0f ? a2 / (a2 + b2) : 0.0f;
+}
+
+OPENPBR_FUNC bool openpbr_render_is_finite(vec3 v)
+{
+    return v.x >= -OPENPBR_RENDER_FLOAT_MAX && v.x <= OPENPBR_RENDER_FLOAT_MAX && v.y >= -OPENPBR_RENDER_FLOAT_MAX &&
+           v.y <= OPENPBR_RENDER_FLOAT_MAX && v.z >= -OPENPBR_RENDER_FLOAT_MAX && v.z <= OPENPBR_RENDER_FLOAT_MAX;
+}
+
+// Radiance of the environment seen along a direction (render units).
+OPENPBR_FUNC vec3 openpbr_render_environment(vec3 direction, uint flags)
+{
+    const vec3 environment = openpbr_render_scene_vec3(OPENPBR_RENDER_SCENE_ENVIRONMENT);
+    if ((flags & OPENPBR_RENDER_FLAG_SKY) == 0u)
+    {
+        return environment;
+    }
+    const vec3 zenith = openpbr_render_scene_vec3(OPENPBR_RENDER_SCENE_SKY_ZENITH);
+    const vec3 horizon = openpbr_render_scene_vec3(OPENPBR_RENDER_SCENE_SKY_HORIZON);
+    const vec3 sky = direction.y >= 0.0f ? mix(horizon, zenith, sqrt(direction.y)) : environment;
+    const float sun = max(dot(direction, openpbr_render_scene_vec3(OPENPBR_RENDER_SCENE_SUN_DIRECTION)), 0.0f);
+    return sky + openpbr_render_scene_vec3(OPENPBR_RENDER_SCENE_SUN_GLOW) *
+                     pow(sun, OPENPBR_RENDER_SCENE(OPENPBR_RENDER_SCENE_SUN_EXPONENT));
+}
+
+// Whether anything (sphere of the cell, ground) blocks the segment from origin to distance.
+OPENPBR_FUNC bool openpbr_render_occluded(vec3 origin, vec3 direction, float distance_value, bool has_sphere,
+                                          float radius, uint flags)
+{
+    const float limit = distance_value * 0.9999f;
+    if (has_sphere)
+    {
+        const float t = openpbr_render_intersect_sphere(origin, direction, vec3(0.0f), radius, 0.0f);
+        if (t > 0.0f && t < limit)
+        {
+            return true;
+        }
+    }
+    if ((flags & OPENPBR_RENDER_FLAG_GROUND) != 0u)
+    {
+        const float t = openpbr_render_intersect_ground(origin, direction, -radius, 0.0f);
+        if (t > 0.0f && t < limit)
+        {
+            return true;
+        }
+    }
+    return false;
+}
+
+// ---- One path ----
+
+// Emitters for next-event estimation: the area light and, seen from the ground, the cell's
+// sphere when its material emits. One is chosen uniformly per vertex (one call site of eval
+// and pdf keeps the kernel small: lavapipe's pipeline creation time grows with it).
+#define OPENPBR_RENDER_EMITTER_LIGHT 1u
+#define OPENPBR_RENDER_EMITTER_SPHERE 2u
+
+OPENPBR_FUNC float openpbr_render_emitter_selection(uint candidates)
+{
+    const uint count = (candidates & 1u) + ((candidates >> 1u) & 1u);
+    return count > 0u ? 1.0f / float(count) : 0.0f;
+}
+
+OPENPBR_FUNC OpenPBR_RenderSample openpbr_render_sample(uint pixel_x, uint pixel_y, uint sample_index)
+{
+    OpenPBR_RenderSample result;
+    result.radiance = vec3(0.0f);
+    result.hit_object = false;
+    result.nonfinite = false;
+
+    const uint width = OPENPBR_RENDER_PARAMETER(OPENPBR_RENDER_PARAMETER_WIDTH);
+    const uint cell_size = OPENPBR_RENDER_PARAMETER(OPENPBR_RENDER_PARAMETER_CELL_SIZE);
+    const uint columns = OPENPBR_RENDER_PARAMETER(OPENPBR_RENDER_PARAMETER_COLUMNS);
+    const uint flags = OPENPBR_RENDER_PARAMETER(OPENPBR_RENDER_PARAMETER_FLAGS);
+    const uint max_depth = OPENPBR_RENDER_PARAMETER(OPENPBR_RENDER_PARAMETER_MAX_DEPTH);
+    const uint max_volume_events = OPENPBR_RENDER_PARAMETER(OPENPBR_RENDER_PARAMETER_MAX_VOLUME_EVENTS);
+    const uint roulette_depth = OPENPBR_RENDER_PARAMETER(OPENPBR_RENDER_PARAMETER_RR_DEPTH);
+    const uint cell_index = (pixel_y / cell_size) * columns + pixel_x / cell_size;
+    const bool has_sphere = cell_index < OPENPBR_RENDER_PARAMETER(OPENPBR_RENDER_PARAMETER_CELL_COUNT);
+    const uint ground_material = OPENPBR_RENDER_PARAMETER(OPENPBR_RENDER_PARAMETER_GROUND_MATERIAL);
+    const bool has_ground = (flags & OPENPBR_RENDER_FLAG_GROUND) != 0u;
+    const bool has_light = (flags & OPENPBR_RENDER_FLAG_LIGHT) != 0u;
+
+    const uint key = openpbr_render_path_key(OPENPBR_RENDER_PARAMETER(OPENPBR_RENDER_PARAMETER_SEED),
+                                             pixel_y * width + pixel_x, sample_index);
+
+    const float radius = OPENPBR_RENDER_SCENE(OPENPBR_RENDER_SCENE_SPHERE_RADIUS);
+    const float ground_y = -radius;
+    const float epsilon = 2e-4f * max(radius, 1e-3f);
+    const vec3 light_center = openpbr_render_scene_vec3(OPENPBR_RENDER_SCENE_LIGHT_CENTER);
+    const float light_radius = OPENPBR_RENDER_SCENE(OPENPBR_RENDER_SCENE_LIGHT_RADIUS);
+    const vec3 light_radiance = openpbr_render_scene_vec3(OPENPBR_RENDER_SCENE_LIGHT_RADIANCE);
+    const float nits_to_units = OPENPBR_RENDER_SCENE(OPENPBR_RENDER_SCENE_NITS_TO_UNITS);
+    const float checker_size = OPENPBR_RENDER_SCENE(OPENPBR_RENDER_SCENE_CHECKER_SIZE);
+    const float checker_dark = OPENPBR_RENDER_SCENE(OPENPBR_RENDER_SCENE_CHECKER_DARK);
+
+    // Camera ray through a jittered point of the pixel, in the cell's [-1, 1]^2 image plane.
+    const float local_x = float(pixel_x % cell_size) + openpbr_render_random(key, 0u, OPENPBR_RENDER_DIMENSION_CAMERA);
+    const float local_y =
+        float(pixel_y % cell_size) + openpbr_render_random(key, 0u, OPENPBR_RENDER_DIMENSION_CAMERA + 1u);
+    const float ndc_x = 2.0f * local_x / float(cell_size) - 1.0f;
+    const float ndc_y = 1.0f - 2.0f * local_y / float(cell_size);
+    vec3 origin = openpbr_render_scene_vec3(OPENPBR_RENDER_SCENE_CAMERA_POSITION);
+    vec3 direction = normalize(openpbr_render_scene_vec3(OPENPBR_RENDER_SCENE_CAMERA_FORWARD) +
+                               openpbr_render_scene_vec3(OPENPBR_RENDER_SCENE_CAMERA_RIGHT) * ndc_x +
+                               openpbr_render_scene_vec3(OPENPBR_RENDER_SCENE_CAMERA_UP) * ndc_y);
+
+    OpenPBR_ResolvedInputs sphere_inputs = openpbr_make_default_resolved_inputs();
+    if (has_sphere)
+    {
+        sphere_inputs = openpbr_render_unpack_material(cell_index);
+    }
+    const bool sphere_emissive = has_sphere && sphere_inputs.emission_luminance > 0.0f &&
+                                 openpbr_max3(sphere_inputs.emission_color) > 0.0f;
+
+    // Wavelengths: one per channel, uniform in the channel's box, for dispersive materials;
+    // otherwise the library's default (the host writes OPENPBR_DEFAULT_RGB_WAVELENGTHS_NM).
+    const bool dispersive = has_sphere && openpbr_needs_rgb_wavelengths(sphere_inputs);
+    vec3 wavelengths = openpbr_render_scene_vec3(OPENPBR_RENDER_SCENE_DEFAULT_WAVELENGTHS);
+    if (dispersive)
+    {
+        wavelengths = vec3(600.0f + 100.0f * openpbr_render_random(key, 0u, OPENPBR_RENDER_DIMENSION_CAMERA + 2u),
+                           500.0f + 100.0f * openpbr_render_random(key, 0u, OPENPBR_RENDER_DIMENSION_CAMERA + 3u),
+                           400.0f + 100.0f * openpbr_render_random(key, 0u, OPENPBR_RENDER_DIMENSION_CAMERA + 4u));
+    }
+    const vec3 ground_wavelengths = openpbr_render_scene_vec3(OPENPBR_RENDER_SCENE_DEFAULT_WAVELENGTHS);
+
+    vec3 throughput = vec3(1.0f);
+    vec3 radiance = vec3(0.0f);
+    bool nonfinite = false;
+    bool in_medium = false;  // inside the sphere's interior (entered by transmission)
+    OpenPBR_HomogeneousVolume medium = openpbr_make_empty_volume();
+    // MIS state of the previous vertex: the emitters its next-event estimation could choose
+    // (0 after a delta lobe or a medium event), its BSDF pdf for the sampled direction, its
+    // position.
+    uint previous_candidates = 0u;
+    float previous_pdf = 0.0f;
+    vec3 previous_position = origin;
+    uint surface_events = 0u;
+    uint volume_events = 0u;
+    const uint step_limit = max_depth + max_volume_events + 2u;
+
+    for (uint step = 0u; step < step_limit; ++step)
+    {
+        // Closest hit among the sphere, the ground and the light.
+        uint hit = OPENPBR_RENDER_HIT_NONE;
+        float t_hit = OPENPBR_RENDER_FLOAT_MAX;
+        if (has_sphere)
+        {
+            const float t = openpbr_render_intersect_sphere(origin, direction, vec3(0.0f), radius, 0.0f);
+            if (t > 0.0f)
+            {
+                hit = OPENPBR_RENDER_HIT_SPHERE;
+                t_hit = t;
+            }
+        }
+        if (has_ground && !in_medium)
+        {
+            const float t = openpbr_render_intersect_ground(origin, direction, ground_y, 0.0f);
+            if (t > 0.0f && t < t_hit)
+            {
+                hit = OPENPBR_RENDER_HIT_GROUND;
+                t_hit = t;
+            }
+        }
+        if (has_light && !in_medium)
+        {
+            const float t = openpbr_render_intersect_sphere(origin, direction, light_center, light_radius, 0.0f);
+            if (t > 0.0f && t < t_hit)
+            {
+                hit = OPENPBR_RENDER_HIT_LIGHT;
+                t_hit = t;
+            }
+        }
+        if (step == 0u)
+        {
+            result.hit_object = hit == OPENPBR_RENDER_HIT_SPHERE;
+        }
+        if (in_medium && hit != OPENPBR_RENDER_HIT_SPHERE)
+        {
+            break;  // lost the interior to rounding: end the path (no light gained)
+        }
+
+        // Interior medium: free flight to the next scattering event or to the surface.
+        if (in_medium && medium.is_present)
+        {
+            const OpenPBR_VolumeDistanceSample flight = openpbr_volume_sample_distance(
+                medium, throughput, t_hit, openpbr_render_random(key, step, OPENPBR_RENDER_DIMENSION_VOLUME),
+                openpbr_render_random(key, step, OPENPBR_RENDER_DIMENSION_VOLUME + 1u));
+            throughput = throughput * flight.weight;
+            if (flight.scattered)
+            {
+                volume_events += 1u;
+                if (volume_events > max_volume_events)
+                {
+                    break;
+                }
+                origin = origin + direction * flight.distance;
+                const float cos_theta = openpbr_henyey_greenstein_sample_cos_theta(
+                    medium.anisotropy, openpbr_render_random(key, step, OPENPBR_RENDER_DIMENSION_VOLUME + 2u));
+                const float sin_theta = sqrt(max(1.0f - cos_theta * cos_theta, 0.0f));
+                const float phi = OPENPBR_RENDER_TWO_PI * openpbr_render_random(key, step, OPENPBR_RENDER_DIMENSION_VOLUME + 3u);
+                const OpenPBR_Basis frame = openpbr_make_basis(direction);
+                direction = normalize(openpbr_to_world(frame, vec3(sin_theta * cos(phi), sin_theta * sin(phi), cos_theta)));
+                previous_candidates = 0u;
+                if (!openpbr_render_is_finite(throughput))
+                {
+                    nonfinite = true;
+                    break;
+                }
+                if (volume_events >= roulette_depth)
+                {
+                    const float survival = min(openpbr_max3(throughput), 1.0f);
+                    if (!(openpbr_render_random(key, step, OPENPBR_RENDER_DIMENSION_ROULETTE) < survival))
+                    {
+                        break;
+                    }
+                    throughput = throughput / survival;
+                }
+                continue;
+            }
+        }
+
+        if (hit == OPENPBR_RENDER_HIT_NONE)
+        {
+            radiance = radiance + throughput * openpbr_render_environment(direction, flags);
+            break;
+        }
+        const float previous_selection = openpbr_render_emitter_selection(previous_candidates);
+        if (hit == OPENPBR_RENDER_HIT_LIGHT)
+        {
+            const float weight =
+                (previous_candidates & OPENPBR_RENDER_EMITTER_LIGHT) != 0u
+                    ? openpbr_render_power_heuristic(
+                          previous_pdf,
+                          previous_selection * openpbr_render_cone_pdf(previous_position, light_center, light_radius))
+                    : 1.0f;
+            radiance = radiance + throughput * light_radiance * weight;
+            break;
+        }
+
+        // Surface interaction: geometric normal = shading normal.
+        const vec3 position = origin + direction * t_hit;
+        const bool on_sphere = hit == OPENPBR_RENDER_HIT_SPHERE;
+        const vec3 normal = on_sphere ? normalize(position) : vec3(0.0f, 1.0f, 0.0f);
+        OpenPBR_ResolvedInputs inputs = sphere_inputs;
+        if (!on_sphere)
+        {
+            inputs = openpbr_render_unpack_material(ground_material);
+            const float parity = fract(0.5f * (floor(position.x / checker_size) + floor(position.z / checker_size)));
+            inputs.base_color = inputs.base_color * (parity < 0.25f ? 1.0f : checker_dark);
+        }
+        inputs.geometry_basis = openpbr_make_basis(normal);
+        inputs.geometry_coat_basis = inputs.geometry_basis;
+        const vec3 view = -direction;
+        const OpenPBR_PreparedBsdf bsdf = openpbr_prepare(inputs, view, on_sphere ? wavelengths : ground_wavelengths);
+
+        if (on_sphere && sphere_emissive)
+        {
+            const float weight =
+                (previous_candidates & OPENPBR_RENDER_EMITTER_SPHERE) != 0u
+                    ? openpbr_render_power_heuristic(
+                          previous_pdf, previous_selection * openpbr_render_cone_pdf(previous_position, vec3(0.0f), radius))
+                    : 1.0f;
+            radiance = radiance + throughput * bsdf.emission * (nits_to_units * weight);
+        }
+
+        surface_events += 1u;
+        if (surface_events > max_depth)
+        {
+            break;
+        }
+
+        // Next-event estimation towards one emitter (also from the interface seen from inside:
+        // rough interfaces then transmit the light in; delta lobes give eval = 0).
+        const uint candidates = (has_light ? OPENPBR_RENDER_EMITTER_LIGHT : 0u) |
+                                (!on_sphere && sphere_emissive ? OPENPBR_RENDER_EMITTER_SPHERE : 0u);
+        if (candidates != 0u)
+        {
+            const float selection = openpbr_render_emitter_selection(candidates);
+            const float u_emitter = openpbr_render_random(key, step, OPENPBR_RENDER_DIMENSION_EMITTER_U);
+            const bool pick_sphere = candidates == OPENPBR_RENDER_EMITTER_SPHERE ||
+                                     (candidates == (OPENPBR_RENDER_EMITTER_LIGHT | OPENPBR_RENDER_EMITTER_SPHERE) &&
+                                      u_emitter < 0.5f);
+            const vec3 emitter_center = pick_sphere ? vec3(0.0f) : light_center;
+            const float emitter_radius = pick_sphere ? radius : light_radius;
+            const OpenPBR_RenderCone cone = openpbr_render_sample_cone(
+                position, emitter_center, emitter_radius,
+                vec2(openpbr_render_random(key, step, OPENPBR_RENDER_DIMENSION_LIGHT_U),
+                     openpbr_render_random(key, step, OPENPBR_RENDER_DIMENSION_LIGHT_V)));
+            if (cone.valid)
+            {
+                const OpenPBR_DiffuseSpecular value = openpbr_eval(bsdf, cone.direction);
+                const vec3 f = value.diffuse + value.specular;
+                if (openpbr_max3(f) > 0.0f)
+                {
+                    vec3 emitted = light_radiance;
+                    if (pick_sphere)
+                    {
+                        OpenPBR_ResolvedInputs emitter_inputs = sphere_inputs;
+                        emitter_inputs.geometry_basis = openpbr_make_basis(normalize(position + cone.direction * cone.distance));
+                        emitter_inputs.geometry_coat_basis = emitter_inputs.geometry_basis;
+                        emitted = openpbr_prepare_emission(emitter_inputs, -cone.direction) * nits_to_units;
+                    }
+                    const float facing = dot(cone.direction, normal) >= 0.0f ? 1.0f : -1.0f;
+                    const vec3 shadow_origin = position + normal * (facing * epsilon);
+                    // The emitting sphere is the target, not an occluder.
+                    if (!openpbr_render_occluded(shadow_origin, cone.direction, cone.distance, has_sphere && !pick_sphere,
+                                                 radius, flags))
+                    {
+                        const float light_pdf = selection * cone.pdf;
+                        const float weight = openpbr_render_power_heuristic(light_pdf, openpbr_pdf(bsdf, cone.direction));
+                        radiance = radiance + throughput * f * emitted * (weight / light_pdf);
+                    }
+                }
+            }
+        }
+
+        // Continue by sampling the BSDF.
+        const OpenPBR_BsdfSample bsdf_sample =
+            openpbr_sample(bsdf, vec3(openpbr_render_random(key, step, OPENPBR_RENDER_DIMENSION_BSDF),
+                                      openpbr_render_random(key, step, OPENPBR_RENDER_DIMENSION_BSDF + 1u),
+                                      openpbr_render_random(key, step, OPENPBR_RENDER_DIMENSION_BSDF + 2u)));
+        if (!(bsdf_sample.pdf > 0.0f))
+        {
+            break;
+        }
+        throughput = throughput * (bsdf_sample.weight.diffuse + bsdf_sample.weight.specular);
+        if (!openpbr_render_is_finite(throughput))
+        {
+            nonfinite = true;
+            break;
+        }
+        const bool delta = (bsdf_sample.lobe_type & OPENPBR_RENDER_LOBE_TYPE_SPECULAR) != 0u;
+        previous_candidates = delta ? 0u : candidates;
+        previous_pdf = bsdf_sample.pdf;
+        previous_position = position;
+        const float going = dot(bsdf_sample.direction, normal);
+        if (on_sphere && !inputs.geometry_thin_walled)
+        {
+            // Below the outward normal of a convex sphere is its interior, whichever lobe took
+            // the path there (refraction, or the opacity pass-through of a cut-out surface).
+            in_medium = going < 0.0f;
+            medium = bsdf.volume;
+        }
+        origin = position + normal * (going >= 0.0f ? epsilon : -epsilon);
+        direction = bsdf_sample.direction;
+
+        if (surface_events >= roulette_depth)
+        {
+            const float survival = min(openpbr_max3(throughput), 1.0f);
+            if (!(openpbr_render_random(key, step, OPENPBR_RENDER_DIMENSION_ROULETTE) < survival))
+            {
+                break;
+            }
+            throughput = throughput / survival;
+        }
+    }
+
+    if (nonfinite || !openpbr_render_is_finite(radiance) || radiance.x < 0.0f || radiance.y < 0.0f || radiance.z < 0.0f)
+    {
+        result.nonfinite = true;
+        result.radiance = vec3(0.0f);
+        return result;
+    }
+    result.radiance = radiance;
+    return result;
+}
+
+// Adds samples [SAMPLE_BEGIN, SAMPLE_END) of one pixel to its accumulation record, in sample
+// order (every backend sums in the same order).
+OPENPBR_FUNC void openpbr_render_pixel(uint pixel_x, uint pixel_y)
+{
+    const uint width = OPENPBR_RENDER_PARAMETER(OPENPBR_RENDER_PARAMETER_WIDTH);
+    const uint height = OPENPBR_RENDER_PARAMETER(OPENPBR_RENDER_PARAMETER_HEIGHT);
+    if (pixel_x >= width || pixel_y >= height)
+    {
+        return;
+    }
+    const uint base = (pixel_y * width + pixel_x) * uint(OPENPBR_RENDER_ACCUMULATION_FLOATS);
+    vec3 sum = vec3(OPENPBR_RENDER_ACCUMULATION_READ(base), OPENPBR_RENDER_ACCUMULATION_READ(base + 1u),
+                    OPENPBR_RENDER_ACCUMULATION_READ(base + 2u));
+    vec3 sum_squares = vec3(OPENPBR_RENDER_ACCUMULATION_READ(base + 3u), OPENPBR_RENDER_ACCUMULATION_READ(base + 4u),
+                            OPENPBR_RENDER_ACCUMULATION_READ(base + 5u));
+    float nonfinite_count = OPENPBR_RENDER_ACCUMULATION_READ(base + 6u);
+    float object_count = OPENPBR_RENDER_ACCUMULATION_READ(base + 7u);
+    const uint sample_end = OPENPBR_RENDER_PARAMETER(OPENPBR_RENDER_PARAMETER_SAMPLE_END);
+    for (uint sample_index = OPENPBR_RENDER_PARAMETER(OPENPBR_RENDER_PARAMETER_SAMPLE_BEGIN); sample_index < sample_end;
+         ++sample_index)
+    {
+        const OpenPBR_RenderSample path = openpbr_render_sample(pixel_x, pixel_y, sample_index);
+        sum = sum + path.radiance;
+        sum_squares = sum_squares + path.radiance * path.radiance;
+        nonfinite_count += path.nonfinite ? 1.0f : 0.0f;
+        object_count += path.hit_object ? 1.0f : 0.0f;
+    }
+    OPENPBR_RENDER_ACCUMULATION_WRITE(base, sum.x);
+    OPENPBR_RENDER_ACCUMULATION_WRITE(base + 1u, sum.y);
+    OPENPBR_RENDER_ACCUMULATION_WRITE(base + 2u, sum.z);
+    OPENPBR_RENDER_ACCUMULATION_WRITE(base + 3u, sum_squares.x);
+    OPENPBR_RENDER_ACCUMULATION_WRITE(base + 4u, sum_squares.y);
+    OPENPBR_RENDER_ACCUMULATION_WRITE(base + 5u, sum_squares.z);
+    OPENPBR_RENDER_ACCUMULATION_WRITE(base + 6u, nonfinite_count);
+    OPENPBR_RENDER_ACCUMULATION_WRITE(base + 7u, object_count);
+}
+
+OPENPBR_NAMESPACE_END
+
+#endif
