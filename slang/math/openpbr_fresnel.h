@@ -12,9 +12,11 @@ OPENPBR_NAMESPACE_BEGIN
 OPENPBR_FUNC float openpbr_fresnel_dielectric(float cos_incident, float eta)
 {
     const float cos_i = clamp(cos_incident, 0.0f, 1.0f);
-    // cos_t^2 = 1 - (1 - cos_i^2) / eta^2, written without the cancellation of 1 - sin^2 so
-    // eta near 1 at grazing angles does not report a spurious total internal reflection.
-    const float cos2_t = (cos_i * cos_i + eta * eta - 1.0f) / (eta * eta);
+    // cos_t^2 = 1 - (1 - cos_i^2) / eta^2 written as cos_i^2 + (1 - cos_i^2)(1 - 1/eta^2): no
+    // cancellation near grazing for eta near 1 (no spurious total internal reflection), and
+    // exactly cos_i^2 (F = 0) for eta = 1.
+    const float cos2_i = cos_i * cos_i;
+    const float cos2_t = cos2_i + (1.0f - cos2_i) * (1.0f - 1.0f / (eta * eta));
     if (cos2_t <= 0.0f)
     {
         return 1.0f;
@@ -29,7 +31,8 @@ OPENPBR_FUNC float openpbr_fresnel_dielectric(float cos_incident, float eta)
 // reflection), so callers that need both F and cos_t compute the square root once.
 OPENPBR_FUNC float openpbr_refracted_cosine(float cos_incident, float eta)
 {
-    return openpbr_safe_sqrt((cos_incident * cos_incident + eta * eta - 1.0f) / (eta * eta));
+    const float cos2_i = cos_incident * cos_incident;
+    return openpbr_safe_sqrt(cos2_i + (1.0f - cos2_i) * (1.0f - 1.0f / (eta * eta)));
 }
 
 // Normal-incidence reflectance of a dielectric interface: ((eta - 1) / (eta + 1))^2.
