@@ -63,43 +63,39 @@ std::vector<OpenPBR_PreparedBsdf> prepared_set(const OpenPBR_ResolvedInputs& inp
     return prepared;
 }
 
-void benchmark_eval(benchmark::State& state, const OpenPBR_ResolvedInputs& inputs)
+// One prepared BSDF per view; `call(bsdf, index)` is the measured work for direction `index`.
+template <typename Call>
+void benchmark_prepared(benchmark::State& state, const OpenPBR_ResolvedInputs& inputs, Call call)
 {
     const std::vector<OpenPBR_PreparedBsdf> prepared = prepared_set(inputs);
-    const Directions& d = directions();
     int i = 0;
     for (auto _ : state)
     {
-        OpenPBR_DiffuseSpecular value = openpbr_eval(prepared[i], d.lights[i]);
-        benchmark::DoNotOptimize(value);
+        auto result = call(prepared[i], i);
+        benchmark::DoNotOptimize(result);
         i = (i + 1) & (direction_count - 1);
     }
+}
+
+void benchmark_eval(benchmark::State& state, const OpenPBR_ResolvedInputs& inputs)
+{
+    benchmark_prepared(state, inputs, [](const OpenPBR_PreparedBsdf& bsdf, int i) {
+        return openpbr_eval(bsdf, directions().lights[i]);
+    });
 }
 
 void benchmark_sample(benchmark::State& state, const OpenPBR_ResolvedInputs& inputs)
 {
-    const std::vector<OpenPBR_PreparedBsdf> prepared = prepared_set(inputs);
-    const Directions& d = directions();
-    int i = 0;
-    for (auto _ : state)
-    {
-        OpenPBR_BsdfSample bsdf_sample = openpbr_sample(prepared[i], d.randoms[i]);
-        benchmark::DoNotOptimize(bsdf_sample);
-        i = (i + 1) & (direction_count - 1);
-    }
+    benchmark_prepared(state, inputs, [](const OpenPBR_PreparedBsdf& bsdf, int i) {
+        return openpbr_sample(bsdf, directions().randoms[i]);
+    });
 }
 
 void benchmark_pdf(benchmark::State& state, const OpenPBR_ResolvedInputs& inputs)
 {
-    const std::vector<OpenPBR_PreparedBsdf> prepared = prepared_set(inputs);
-    const Directions& d = directions();
-    int i = 0;
-    for (auto _ : state)
-    {
-        float pdf = openpbr_pdf(prepared[i], d.lights[i]);
-        benchmark::DoNotOptimize(pdf);
-        i = (i + 1) & (direction_count - 1);
-    }
+    benchmark_prepared(state, inputs, [](const OpenPBR_PreparedBsdf& bsdf, int i) {
+        return openpbr_pdf(bsdf, directions().lights[i]);
+    });
 }
 
 // A material with every lobe at partial weight: the most expensive configuration.
