@@ -8,6 +8,7 @@
 
 #include "host/compile_targets.h"
 #include "host/conformance.h"
+#include "host/furnace_command.h"
 #include "host/fuzz_fit.h"
 #include "host/lut_generator.h"
 #include "host/material_library.h"
@@ -114,12 +115,17 @@ int main(int argc, char** argv)
     compile->add_option("-o,--output-dir", compile_options.output_directory, "output directory")->required();
 
     openpbr::host::RenderCommand render = openpbr::host::add_render_subcommand(app);
+    openpbr::host::FurnaceCommand furnace = openpbr::host::add_furnace_subcommand(app);
 
     CLI11_PARSE(app, argc, argv);
 
     if (render.subcommand->parsed())
     {
         return openpbr::host::run_render_command(render, materials_directory, kernel_directory);
+    }
+    if (furnace.subcommand->parsed())
+    {
+        return openpbr::host::run_furnace_command(furnace);
     }
 
     try

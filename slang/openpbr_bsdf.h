@@ -433,9 +433,13 @@ OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare_lobes(OPENPBR_IN(OpenPBR_Resol
     const vec3 thin_transmission_estimate = thin_transmission_weight;
 
     // Darkening (spec "Coat", darkening): lerp(1, Delta, C delta), Delta = (1 - K)/(1 - E_b K),
-    // K = lerp(K_s, K_r, r_b); E_b the reflected base albedo (at the view, not only at normal
-    // incidence: a documented approximation).
-    const vec3 base_albedo = openpbr_saturate(specular_estimate + diffuse_estimate + metal_albedo);
+    // K = lerp(K_s, K_r, r_b); E_b the albedo of the whole base, its slabs blended by their mix
+    // weights (spec: translucent and subsurface slabs included, so a white glass base under a
+    // white coat is not darkened and passes the white furnace), taken at the view rather than
+    // only at normal incidence (a documented approximation).
+    const vec3 base_albedo =
+        openpbr_saturate(specular_estimate + diffuse_estimate + metal_albedo + diffuse_transmission_estimate +
+                         transmission_estimate + thin_transmission_estimate);
     const float k_specular = openpbr_fresnel_dielectric(coat_mu, coat_ior);
     const float k_rough = 1.0f - (1.0f - openpbr_average_fresnel(coat_ior)) * bsdf.coat_inverse_eta_squared;
     const float specular_f0 = openpbr_dielectric_f0(eta_base);

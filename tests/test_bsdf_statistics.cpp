@@ -2,11 +2,12 @@
 // sphere), pdf normalization, weight == eval / pdf, white furnace and per-lobe reciprocity.
 //
 // Data-driven: a new material configuration is one entry of material_configs() (or of
-// furnace_configs()); a new lobe is one entry of reciprocity_cases(). Every configuration is
-// tested at each view cosine of kViewCosines, on the sides it lists (outside: view above the
-// geometric normal; inside: below it) and for each IOR variant (e.g. eta and 1/eta once
-// transmission is implemented).
+// host::white_furnace_configs() in host/furnace.cpp, shared with `openpbr furnace`); a new
+// lobe is one entry of reciprocity_cases(). Every configuration is tested at each view cosine
+// of kViewCosines, on the sides it lists (outside: view above the geometric normal; inside:
+// below it) and for each IOR variant (e.g. eta and 1/eta for transmission).
 #include "tests/statistical/bsdf_statistics.h"
+#include "host/furnace.h"
 
 #include <gtest/gtest.h>
 
@@ -325,176 +326,18 @@ INSTANTIATE_TEST_SUITE_P(Configurations, BsdfStatistics, ::testing::ValuesIn(sta
 // ------------------------------------------------------------------------------------------
 // White furnace
 
-enum class FurnaceExpectation
-{
-    // |1 - albedo| <= 0.005 for view cos >= 0.1, and albedo <= 1.005 at every angle.
-    energy_conserving,
-    // Only albedo <= 1.005 at every angle (white but lossy configurations).
-    no_energy_gain,
-};
-
-struct FurnaceConfig
-{
-    std::string name;
-    std::function<OpenPBR_ResolvedInputs()> make_inputs;
-    FurnaceExpectation expectation;
-    std::vector<Side> sides = {Side::outside};
-};
-
-OpenPBR_ResolvedInputs white_metal(float roughness, float anisotropy)
-{
-    OpenPBR_ResolvedInputs i = defaults();
-    i.base_color = glm::vec3(1.0f);
-    i.specular_color = glm::vec3(1.0f);
-    i.base_metalness = 1.0f;
-    i.specular_roughness = roughness;
-    i.specular_roughness_anisotropy = anisotropy;
-    if (anisotropy > 0.0f)
-    {
-        i.geometry_basis = tilted_basis();
-        i.specular_anisotropy_rotation = glm::vec2(std::cos(1.0f), std::sin(1.0f));
-    }
-    return i;
-}
-
-OpenPBR_ResolvedInputs white_dielectric(float specular_roughness, float diffuse_roughness)
-{
-    OpenPBR_ResolvedInputs i = defaults();
-    i.base_color = glm::vec3(1.0f);
-    i.specular_color = glm::vec3(1.0f);
-    i.specular_roughness = specular_roughness;
-    i.base_diffuse_roughness = diffuse_roughness;
-    return i;
-}
-
-const std::vector<FurnaceConfig>& furnace_configs()
-{
-    using E = FurnaceExpectation;
-    static const std::vector<FurnaceConfig> configs = {
-        {"white_metal_r0", [] { return white_metal(0.0f, 0.0f); }, E::energy_conserving},
-        {"white_metal_r0p2", [] { return white_metal(0.2f, 0.0f); }, E::energy_conserving},
-        {"white_metal_r0p5", [] { return white_metal(0.5f, 0.0f); }, E::energy_conserving},
-        {"white_metal_r0p8", [] { return white_metal(0.8f, 0.0f); }, E::energy_conserving},
-        {"white_metal_r1", [] { return white_metal(1.0f, 0.0f); }, E::energy_conserving},
-        {"white_metal_aniso_r0p5_a0p8", [] { return white_metal(0.5f, 0.8f); }, E::energy_conserving},
-        {"white_metal_aniso_r1_a0p8", [] { return white_metal(1.0f, 0.8f); }, E::energy_conserving},
-        {"white_diffuse_white_specular_r0", [] { return white_dielectric(0.0f, 0.0f); }, E::energy_conserving},
-        {"white_diffuse_white_specular_r0p3", [] { return white_dielectric(0.3f, 0.0f); }, E::energy_conserving},
-        {"white_diffuse_white_specular_r0p6", [] { return white_dielectric(0.6f, 0.0f); }, E::energy_conserving},
-        {"white_diffuse_white_specular_r1", [] { return white_dielectric(1.0f, 0.0f); }, E::energy_conserving},
-        {"eon_rough_white",
-         [] {
-             OpenPBR_ResolvedInputs i = white_dielectric(0.3f, 1.0f);
-             i.specular_weight = 0.0f;
-             return i;
-         },
-         E::energy_conserving},
-        {"eon_rough_white_white_specular", [] { return white_dielectric(0.3f, 1.0f); }, E::energy_conserving},
-        // specular_weight 0 or specular_ior 1: the specular interface vanishes (eta = 1).
-        {"white_lambert_no_specular",
-         [] {
-             OpenPBR_ResolvedInputs i = white_dielectric(0.3f, 0.0f);
-             i.specular_weight = 0.0f;
-             return i;
-         },
-         E::energy_conserving},
-        {"white_diffuse_specular_ior_1",
-         [] {
-             OpenPBR_ResolvedInputs i = white_dielectric(0.3f, 0.0f);
-             i.specular_ior = 1.0f;
-             return i;
-         },
-         E::energy_conserving},
-        {"eon_half_rough_white_white_specular", [] { return white_dielectric(0.5f, 0.5f); }, E::energy_conserving},
-        {"white_half_metal",
-         [] {
-             OpenPBR_ResolvedInputs i = white_dielectric(0.4f, 0.0f);
-             i.base_metalness = 0.5f;
-             return i;
-         },
-         E::energy_conserving},
-        {"white_dielectric_opacity_0p5",
-         [] {
-             OpenPBR_ResolvedInputs i = white_dielectric(0.4f, 0.0f);
-             i.geometry_opacity = 0.5f;
-             return i;
-         },
-         E::energy_conserving},
-        {"default_material", [] { return defaults(); }, E::no_energy_gain},
-        // Spec "White furnace testing": coat, fuzz, translucent and subsurface bases.
-        {"white_coat_on_white_diffuse",
-         [] {
-             OpenPBR_ResolvedInputs i = white_dielectric(0.3f, 0.0f);
-             i.coat_weight = 1.0f;
-             i.coat_roughness = 0.2f;
-             return i;
-         },
-         E::energy_conserving},
-        {"white_half_coat_on_white_metal",
-         [] {
-             OpenPBR_ResolvedInputs i = white_metal(0.4f, 0.0f);
-             i.coat_weight = 0.5f;
-             i.coat_roughness = 0.0f;
-             return i;
-         },
-         E::energy_conserving},
-        {"white_fuzz_on_white_diffuse",
-         [] {
-             OpenPBR_ResolvedInputs i = white_dielectric(0.3f, 0.0f);
-             i.fuzz_weight = 1.0f;
-             return i;
-         },
-         E::energy_conserving},
-        {"white_rough_glass",
-         [] {
-             OpenPBR_ResolvedInputs i = white_dielectric(0.3f, 0.0f);
-             i.transmission_weight = 1.0f;
-             return i;
-         },
-         E::energy_conserving,
-         {Side::outside, Side::inside}},
-        {"white_smooth_glass",
-         [] {
-             OpenPBR_ResolvedInputs i = white_dielectric(0.0f, 0.0f);
-             i.transmission_weight = 1.0f;
-             return i;
-         },
-         E::energy_conserving,
-         {Side::outside, Side::inside}},
-        {"white_thin_walled_translucent",
-         [] {
-             OpenPBR_ResolvedInputs i = white_dielectric(0.3f, 0.0f);
-             i.transmission_weight = 1.0f;
-             i.geometry_thin_walled = true;
-             return i;
-         },
-         E::energy_conserving},
-        {"white_thin_walled_subsurface",
-         [] {
-             OpenPBR_ResolvedInputs i = white_dielectric(0.3f, 0.0f);
-             i.subsurface_weight = 1.0f;
-             i.subsurface_color = glm::vec3(1.0f);
-             i.geometry_thin_walled = true;
-             return i;
-         },
-         E::energy_conserving},
-        // Add: thin-film white configurations (the film must not absorb).
-    };
-    return configs;
-}
-
-const std::vector<float> kFurnaceViewCosines = {1.0f, 0.5f, 0.1f, 0.02f, 1e-3f};
+// The configurations and tolerances are host/furnace.h's, shared with `openpbr furnace`.
 constexpr double kFurnaceTargetError = 5e-4;
 
 struct FurnaceCase
 {
-    const FurnaceConfig* config;
+    const host::FurnaceConfig* config;
     float view_cos;
-    Side side;
+    host::FurnaceSide side;
     std::string name() const
     {
         std::ostringstream out;
-        out << config->name << "_cos" << view_cos << (side == Side::inside ? "_inside" : "");
+        out << config->name << "_cos" << view_cos << (side == host::FurnaceSide::inside ? "_inside" : "");
         std::string s = out.str();
         for (char& c : s)
         {
@@ -507,11 +350,11 @@ struct FurnaceCase
 std::vector<FurnaceCase> furnace_cases()
 {
     std::vector<FurnaceCase> cases;
-    for (const FurnaceConfig& config : furnace_configs())
+    for (const host::FurnaceConfig& config : host::white_furnace_configs())
     {
-        for (float view_cos : kFurnaceViewCosines)
+        for (float view_cos : host::white_furnace_view_cosines())
         {
-            for (Side side : config.sides)
+            for (host::FurnaceSide side : config.sides)
             {
                 cases.push_back({&config, view_cos, side});
             }
@@ -527,11 +370,8 @@ class WhiteFurnace : public ::testing::TestWithParam<FurnaceCase>
 TEST_P(WhiteFurnace, Albedo)
 {
     const FurnaceCase& c = GetParam();
-    const OpenPBR_ResolvedInputs inputs = c.config->make_inputs();
-    const OpenPBR_Basis frame =
-        openpbr_make_basis(inputs.geometry_basis.normal, inputs.geometry_basis.tangent, inputs.geometry_basis.bitangent);
-    const glm::vec3 view = direction_in_basis(frame, c.side == Side::outside ? c.view_cos : -c.view_cos, 0.6);
-    const OpenPBR_PreparedBsdf bsdf = openpbr_prepare(inputs, view);
+    const OpenPBR_ResolvedInputs& inputs = c.config->inputs;
+    const OpenPBR_PreparedBsdf bsdf = openpbr_prepare(inputs, host::furnace_view(inputs, c.view_cos, c.side));
     // Deterministic sample-count escalation: 2^18 samples, 4x more while the standard error
     // exceeds kFurnaceTargetError (lobe selection makes some configurations noisy).
     const SamplingTarget target = make_bsdf_target(bsdf, c.name());
@@ -554,13 +394,14 @@ TEST_P(WhiteFurnace, Albedo)
         // grazing views (only the 1.005 bound applies) cosine-sampled EON has heavy-tailed
         // weights (pi f / rho grows like sigma / max(mu_i, mu_o)), so there 4M samples only
         // reach a few 1e-3.
-        const double max_standard_error = c.view_cos >= 0.1f ? 1e-3 : 5e-3;
+        const double max_standard_error = c.view_cos >= host::furnace_tolerance_min_cos ? 1e-3 : 5e-3;
         EXPECT_LT(se, max_standard_error) << "channel " << channel << ": albedo " << a << " from "
                                           << albedo.sample_count << " samples";
-        EXPECT_LE(a, 1.005) << "energy gain, channel " << channel << ": albedo " << a << " +- " << se;
-        if (c.config->expectation == FurnaceExpectation::energy_conserving && c.view_cos >= 0.1f)
+        EXPECT_LE(a, host::furnace_max_albedo) << "energy gain, channel " << channel << ": albedo " << a << " +- " << se;
+        if (c.config->expectation == host::FurnaceExpectation::energy_conserving &&
+            c.view_cos >= host::furnace_tolerance_min_cos)
         {
-            EXPECT_LE(std::fabs(1.0 - a), 0.005)
+            EXPECT_LE(std::fabs(1.0 - a), host::furnace_tolerance)
                 << "white furnace, channel " << channel << ": albedo " << a << " +- " << se;
         }
     }

@@ -1,0 +1,95 @@
+// White furnace: the directional albedo of white materials, which must be 1 where the model
+// is energy conserving and never above 1 (spec "White furnace testing"; docs/spec-notes.md 12).
+// The configuration list is shared by `openpbr furnace` and the statistical test suite
+// (tests/test_bsdf_statistics.cpp), so the command reports exactly what ctest checks.
+#ifndef OPENPBR_HOST_FURNACE_H
+#define OPENPBR_HOST_FURNACE_H
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "slang/openpbr.h"
+
+namespace openpbr::host {
+
+enum class FurnaceExpectation
+{
+    // |1 - albedo| <= 0.005 for view cos >= 0.1, and albedo <= 1.005 at every angle.
+    energy_conserving,
+    // Only albedo <= 1.005 at every angle (white but lossy configurations, e.g. the default
+    // material, whose base_color 0.8 absorbs).
+    no_energy_gain,
+};
+
+enum class FurnaceSide
+{
+    outside,  // view on the side the geometric normal points to
+    inside    // view below the geometric normal (a ray leaving the object)
+};
+
+struct FurnaceConfig
+{
+    std::string name;
+    OpenPBR_ResolvedInputs inputs;
+    FurnaceExpectation expectation = FurnaceExpectation::energy_conserving;
+    std::vector<FurnaceSide> sides = {FurnaceSide::outside};
+};
+
+// The specification's list (white metal; white dielectric with diffuse, subsurface and
+// translucent bases; mixes; with a white coat; with white fuzz) plus white glass, white coat
+// over a white base, thin-walled glass and IOR 3, at several roughnesses.
+const std::vector<FurnaceConfig>& white_furnace_configs();
+
+// View cosines of the furnace, e.g. {1, 0.5, 0.1, 0.02, 0.001}: the tolerance applies from
+// 0.1 up, the no-gain bound everywhere.
+const std::vector<float>& white_furnace_view_cosines();
+
+// Tolerances of the complete-BSDF issue.
+constexpr double furnace_tolerance = 0.005;   // |1 - albedo| for cos >= furnace_tolerance_min_cos
+constexpr double furnace_tolerance_min_cos = 0.1;
+constexpr double furnace_max_albedo = 1.005;  // at every angle
+
+// The world-space view of a configuration at local cosine `cos_theta` (azimuth fixed so
+// anisotropic configurations see an oblique azimuth), from the given side.
+vec3 furnace_view(const OpenPBR_ResolvedInputs& inputs, float cos_theta, FurnaceSide side);
+
+struct FurnaceEstimate
+{
+    double albedo[3] = {0.0, 0.0, 0.0};          // mean sample weight per channel
+    double standard_error[3] = {0.0, 0.0, 0.0};
+    double max_weight = 0.0;
+    std::uint64_t samples = 0;
+};
+
+// Mean of openpbr_sample weights (diffuse + specular, delta samples included, no sample = 0)
+// from `samples` independent samples (PCG32 streams, TBB-parallel, deterministic per seed).
+FurnaceEstimate estimate_furnace_albedo(const OpenPBR_ResolvedInputs& inputs, const vec3& view_world,
+                                        std::uint64_t samples, std::uint64_t seed);
+
+struct FurnaceOptions
+{
+    std::uint64_t samples = 1u << 20;  // per configuration, view and side, e.g. 1048576
+    std::string name_filter;           // substring of the configuration name; empty = all
+};
+
+struct FurnaceRow
+{
+    std::string name;  // configuration name, "_inside" appended for the inside view
+    float cos_theta = 1.0f;
+    FurnaceEstimate estimate;
+    bool within_tolerance = true;  // the configuration's expectation holds at this view
+};
+
+std::vector<FurnaceRow> run_white_furnace(const FurnaceOptions& options);
+
+// {"configs": [{"name": s, "cos_theta": c, "albedo": [r, g, b], "standard_error": [...],
+//  "max_weight": w, "samples": n, "pass": b}], "tolerance": ..., "max_albedo": ...}
+nlohmann::json furnace_to_json(const std::vector<FurnaceRow>& rows);
+std::string furnace_to_text(const std::vector<FurnaceRow>& rows);
+
+}  // namespace openpbr::host
+
+#endif
