@@ -422,20 +422,26 @@ struct ReciprocityCase
     double min_value = 1e-6;  // values below are not compared (see reciprocity_cases())
 };
 
-LobeFunction eon_lobe(glm::vec3 rho, float sigma)
+// hemisphere_sign -1: the thin-walled transmission form of a lobe (the reflection lobe
+// mirrored below the surface). A view from below is mirrored with the light, so swapping the
+// two directions of a transmitted pair stays a valid query.
+LobeFunction eon_lobe(glm::vec3 rho, float sigma, float hemisphere_sign = 1.0f)
 {
-    return [rho, sigma](const glm::vec3& view, const glm::vec3& light) {
-        const OpenPBR_DiffuseLobe lobe = openpbr_diffuse_lobe_init(glm::vec3(1.0f), rho, sigma, 1.0f, view);
-        return openpbr_diffuse_lobe_eval(lobe, view, light);
+    return [rho, sigma, hemisphere_sign](const glm::vec3& view, const glm::vec3& light) {
+        const glm::vec3 mirror(1.0f, 1.0f, view.z < 0.0f ? -1.0f : 1.0f);
+        const OpenPBR_DiffuseLobe lobe =
+            openpbr_diffuse_lobe_init(glm::vec3(1.0f), rho, sigma, hemisphere_sign, view * mirror);
+        return openpbr_diffuse_lobe_eval(lobe, view * mirror, light * mirror);
     };
 }
 
-LobeFunction microfacet_lobe(glm::vec2 alpha, OpenPBR_Fresnel fresnel)
+LobeFunction microfacet_lobe(glm::vec2 alpha, OpenPBR_Fresnel fresnel, float hemisphere_sign = 1.0f)
 {
-    return [alpha, fresnel](const glm::vec3& view, const glm::vec3& light) {
+    return [alpha, fresnel, hemisphere_sign](const glm::vec3& view, const glm::vec3& light) {
+        const glm::vec3 mirror(1.0f, 1.0f, view.z < 0.0f ? -1.0f : 1.0f);
         const OpenPBR_MicrofacetReflectionLobe lobe = openpbr_microfacet_reflection_lobe_init(
-            glm::vec3(1.0f), alpha, fresnel, OPENPBR_LOBE_ID_SPECULAR_REFLECTION, 1.0f, view);
-        return openpbr_microfacet_reflection_lobe_eval(lobe, view, light);
+            glm::vec3(1.0f), alpha, fresnel, OPENPBR_LOBE_ID_SPECULAR_REFLECTION, hemisphere_sign, view * mirror);
+        return openpbr_microfacet_reflection_lobe_eval(lobe, view * mirror, light * mirror);
     };
 }
 
@@ -479,7 +485,11 @@ const std::vector<ReciprocityCase>& reciprocity_cases()
         // are not compared (on typical values of 0.1 to 10).
         {"dielectric_interface_r0p3", dielectric_interface_lobe(openpbr_ggx_alpha(0.3f, 0.0f), 1.5f), true, 1e-2},
         {"dielectric_interface_r0p8_aniso", dielectric_interface_lobe(openpbr_ggx_alpha(0.8f, 0.5f), 1.33f), true, 1e-2},
-        // Add: fuzz, thin-walled diffuse transmission (eon with hemisphere_sign -1), ...
+        // Thin-walled transmission: the diffuse sheet and the un-deflected rough transmission.
+        {"eon_thin_walled_transmission", eon_lobe(glm::vec3(0.7f), 0.6f, -1.0f), true},
+        {"ggx_thin_walled_transmission",
+         microfacet_lobe(openpbr_ggx_alpha(0.4f, 0.0f), openpbr_make_constant_fresnel(glm::vec3(1.0f)), -1.0f), true},
+        // Not listed: the fuzz LTC lobe, which is not reciprocal (README "Model choices").
     };
     return cases;
 }
