@@ -175,7 +175,33 @@ const std::vector<MaterialConfig>& material_configs()
              i.subsurface_scatter_anisotropy = 0.3f;
              return i;
          }},
-        // Add: thin film, volumes, ... (one entry each).
+        // The whole BSDF with every lobe on at partial weight (thin film, anisotropy, a tilted
+        // coat normal, dispersion and partial opacity included), entering and leaving.
+        {"every_lobe_partial",
+         [] {
+             OpenPBR_ResolvedInputs i = defaults();
+             i.base_metalness = 0.3f;
+             i.base_diffuse_roughness = 0.5f;
+             i.specular_roughness = 0.35f;
+             i.specular_roughness_anisotropy = 0.5f;
+             i.geometry_basis = tilted_basis();
+             i.specular_anisotropy_rotation = glm::vec2(std::cos(0.5f), std::sin(0.5f));
+             i.geometry_coat_basis.normal = glm::normalize(glm::vec3(-0.1f, 0.2f, 1.0f));
+             i.geometry_coat_basis.tangent = glm::vec3(1.0f, 0.0f, 0.0f);
+             i.geometry_coat_basis.bitangent = glm::cross(i.geometry_coat_basis.normal, i.geometry_coat_basis.tangent);
+             i.transmission_weight = 0.3f;
+             i.transmission_dispersion_scale = 0.5f;
+             i.subsurface_weight = 0.3f;
+             i.coat_weight = 0.5f;
+             i.coat_roughness = 0.2f;
+             i.coat_color = glm::vec3(0.9f, 0.8f, 0.7f);
+             i.fuzz_weight = 0.4f;
+             i.thin_film_weight = 0.5f;
+             i.geometry_opacity = 0.9f;
+             return i;
+         },
+         {Side::outside, Side::inside},
+         {1.5f, 1.0f / 1.5f}},
     };
     return configs;
 }
