@@ -170,6 +170,11 @@ std::vector<FurnaceConfig> make_configs()
                                       i.fuzz_weight = 0.5f;
                                       i.fuzz_roughness = 0.4f;
                                   })},
+        // A thin film does not absorb (spec "Thin-film iridescence"): the furnace still holds.
+        {"white_metal_thin_film", with(white_metal(0.3f, 0.0f), [](auto& i) { i.thin_film_weight = 1.0f; })},
+        {"white_diffuse_thin_film", with(white_dielectric(0.3f, 0.0f), [](auto& i) { i.thin_film_weight = 1.0f; })},
+        {"white_glass_thin_film", with(white_glass(0.3f, 1.5f), [](auto& i) { i.thin_film_weight = 1.0f; }),
+         E::energy_conserving, both},
         // The default material absorbs (base_color 0.8): it may only not gain energy.
         {"default_material", openpbr_make_default_resolved_inputs(), E::no_energy_gain},
     };

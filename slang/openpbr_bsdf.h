@@ -145,6 +145,40 @@ OPENPBR_FUNC OpenPBR_GgxLobeAlbedo openpbr_ggx_lobe_albedo(float roughness, floa
     return result;
 }
 
+// Mean change F_film - F_plain of the Fresnel factor over the light a GGX reflection lobe
+// reflects at this view: a fixed 4-point quadrature over the visible normals (a rank-1 lattice
+// through the spherical-cap sampler, each point weighted by the reflected fraction
+// G2 / G1, Heitz 2014), exact for a mirror. The film's phase makes F_film oscillate with the
+// microfacet angle, so no single angle stands for the lobe: evaluated at the view cosine the
+// estimate was off by up to 14 % at roughness 0.9 (white furnace of a filmed white dielectric),
+// 1.4 % with these 4 points. Only the change is estimated this way; the plain part keeps the
+// tabulated E_R (the ratio F_film / F_plain would magnify the tables' error).
+OPENPBR_FUNC vec3 openpbr_film_fresnel_change(OPENPBR_IN(OpenPBR_Fresnel) filmed, float eta, vec3 view, vec2 alpha)
+{
+    if (openpbr_ggx_is_delta(alpha))
+    {
+        return openpbr_fresnel_evaluate(filmed, view.z) - vec3(openpbr_fresnel_dielectric(view.z, eta));
+    }
+    const float lambda_view = openpbr_ggx_lambda(view, alpha);
+    vec3 change = vec3(0.0f);
+    float weight_sum = 0.0f;
+    for (int node = 0; node < 4; ++node)
+    {
+        const vec2 u = vec2(fract(0.5f + 0.618034f * float(node)), (float(node) + 0.5f) * 0.25f);
+        const vec3 microfacet = openpbr_sample_vndf_spherical_cap(view, alpha, u);
+        const float cos_microfacet = dot(view, microfacet);
+        const vec3 light = 2.0f * cos_microfacet * microfacet - view;
+        if (light.z > 0.0f)
+        {
+            const float weight = (1.0f + lambda_view) / (1.0f + lambda_view + openpbr_ggx_lambda(light, alpha));
+            change += weight * (openpbr_fresnel_evaluate(filmed, cos_microfacet) -
+                                vec3(openpbr_fresnel_dielectric(cos_microfacet, eta)));
+            weight_sum += weight;
+        }
+    }
+    return weight_sum > 0.0f ? change / weight_sum : vec3(0.0f);
+}
+
 // Turquin 2019, "Practical multiple scattering compensation for microfacet models": scale the
 // single-scattering lobe by 1 + F0 (1 - E) / E, E the F = 1 albedo of the same lobe.
 OPENPBR_FUNC vec3 openpbr_multiple_scattering_compensation(vec3 f0, float ggx_albedo)
@@ -356,15 +390,14 @@ OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare_lobes(OPENPBR_IN(OpenPBR_Resol
         specular_is_delta ? openpbr_fresnel_dielectric(mu, eta_channels.y)
                           : openpbr_dielectric_reflection_albedo(mu, base_lobe_albedo.reflection_alpha, eta_channels.y) *
                                 base_lobe_albedo.reflection_scale;
-    // With a film, E[f^R] moves by the film's change of the Fresnel factor at the view times
-    // the lobe's F = 1 albedo (the tables hold no film): an estimate, exact for a mirror.
+    // With a film, E[f^R] moves by the film's change of the Fresnel factor averaged over the
+    // lobe, times the lobe's F = 1 albedo (the tables hold no film): exact for a mirror.
     vec3 reflection_albedo = vec3(plain_reflection_albedo);
     if (film_weight > 0.0f)
     {
         OpenPBR_Fresnel untinted = dielectric_fresnel;
         untinted.tint = vec3(1.0f);
-        reflection_albedo = max(reflection_albedo + (openpbr_fresnel_evaluate(untinted, mu) -
-                                                     vec3(openpbr_fresnel_dielectric(mu, eta_channels.y))) *
+        reflection_albedo = max(reflection_albedo + openpbr_film_fresnel_change(untinted, eta_channels.y, view, alpha) *
                                                         base_lobe_albedo.albedo,
                                 vec3(0.0f));
     }

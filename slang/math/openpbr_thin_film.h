@@ -585,21 +585,26 @@ OPENPBR_FUNC vec3 openpbr_thin_film_fresnel_conductor_fast(float cos_theta, floa
 // is an approximation: OpenPBR's specular_color multiplies the F82-tint curve at 82 degrees
 // (Hoffman / Kutz et al.), while Gulbrandsen's g shapes the edge of the exact conductor
 // Fresnel curve, so with a zero-thickness film the result matches F0 exactly at normal
-// incidence but only approximately towards grazing. r is clamped to [0, 0.99] (n_max grows
-// without bound as r -> 1) and g to [0, 1].
+// incidence but only approximately towards grazing. r is clamped to [0, 0.9999] and g to
+// [0, 1]; n is clamped to the film model's IOR range [OPENPBR_THIN_FILM_MIN_IOR,
+// OPENPBR_THIN_FILM_MAX_IOR] before k is derived from it, so the pair (n, k) the film sees
+// still reflects exactly r at normal incidence (n_min -> 0 and n_max -> infinity as r -> 1:
+// clamping n alone afterwards turned a white metal, r = 1, into a 98 % reflector that lost
+// 2 % in the white furnace).
 OPENPBR_FUNC vec3 openpbr_gulbrandsen_n(vec3 r, vec3 g)
 {
-    const vec3 reflectivity = openpbr_clamp_finite(r, 0.0f, 0.99f);
+    const vec3 reflectivity = openpbr_clamp_finite(r, 0.0f, 0.9999f);
     const vec3 edge_tint = openpbr_clamp_finite(g, 0.0f, 1.0f);
     const vec3 sqrt_r = sqrt(reflectivity);
     const vec3 n_min = (vec3(1.0f) - reflectivity) / (vec3(1.0f) + reflectivity);
     const vec3 n_max = (vec3(1.0f) + sqrt_r) / (vec3(1.0f) - sqrt_r);
-    return edge_tint * n_min + (vec3(1.0f) - edge_tint) * n_max;
+    return clamp(edge_tint * n_min + (vec3(1.0f) - edge_tint) * n_max, vec3(OPENPBR_THIN_FILM_MIN_IOR),
+                 vec3(OPENPBR_THIN_FILM_MAX_IOR));
 }
 
 OPENPBR_FUNC vec3 openpbr_gulbrandsen_k(vec3 r, vec3 n)
 {
-    const vec3 reflectivity = openpbr_clamp_finite(r, 0.0f, 0.99f);
+    const vec3 reflectivity = openpbr_clamp_finite(r, 0.0f, 0.9999f);
     const vec3 k_squared = (reflectivity * openpbr_square(n + vec3(1.0f)) - openpbr_square(n - vec3(1.0f))) /
                            (vec3(1.0f) - reflectivity);
     return sqrt(max(k_squared, vec3(0.0f)));
