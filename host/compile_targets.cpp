@@ -100,11 +100,19 @@ double run_command(const std::vector<std::string>& arguments)
 
 std::vector<std::string> slang_command(const CompileTargetsOptions& options, const std::string& target)
 {
-    if (!options.slangc.empty())
+    std::vector<std::string> command =
+        options.slangc.empty()
+            ? std::vector<std::string>{options.node, (fs::path(options.source_directory) / "targets" / "slangc.mjs").string(), "-q"}
+            : std::vector<std::string>{options.slangc};
+    command.insert(command.end(), {"-target", target});
+    // Feature toggles (slang/openpbr_features.h): Slang turns specialization constants into
+    // uniforms for HLSL and CUDA, so those outputs take compile-time permutations (SPIR-V keeps
+    // them, Metal gets function constants).
+    if (target == "hlsl" || target == "cuda")
     {
-        return {options.slangc, "-target", target};
+        command.insert(command.end(), {"-D", "OPENPBR_SPECIALIZATION_CONSTANTS=0"});
     }
-    return {options.node, (fs::path(options.source_directory) / "targets" / "slangc.mjs").string(), "-q", "-target", target};
+    return command;
 }
 
 CompiledFile record(const std::string& target, const std::string& description, const fs::path& path, double seconds)

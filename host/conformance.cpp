@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <map>
 #include <random>
 #include <sstream>
 #include <stdexcept>
@@ -12,6 +13,7 @@
 #include <tbb/parallel_for.h>
 
 #include "host/cuda_conformance.h"
+#include "host/features.h"
 #include "host/shipped_tables.h"
 #include "host/vulkan_runner.h"
 #include "slang/openpbr.h"
@@ -83,19 +85,33 @@ const std::vector<GpuPath>& gpu_paths()
     return paths;
 }
 
+const GpuPath& find_gpu_path(const std::string& path_name)
+{
+    for (const GpuPath& path : gpu_paths())
+    {
+        if (path.name == path_name)
+        {
+            return path;
+        }
+    }
+    throw std::invalid_argument("unknown GPU path '" + path_name + "'");
+}
+
 // Bindings shared by every conformance kernel: 0 tables, 1 fuzz table, 2 queries,
 // 3 materials, 4 parameters, 5 results.
-GpuBatchResult execute_gpu_path(const GpuPath& path, VulkanContext& context, const std::vector<float>& queries,
-                                const std::vector<float>& materials, const std::string& kernel_directory)
+ComputePipelineDescription conformance_pipeline_description(const GpuPath& path, const std::string& kernel_directory)
 {
-    const std::string kernel_path = kernel_directory + "/" + path.kernel_file;
-    const std::size_t query_count = queries.size() / OPENPBR_QUERY_FLOATS;
-
     ComputePipelineDescription description;
-    description.spirv_words = load_spirv_file(kernel_path);
+    description.spirv_words = load_spirv_file(kernel_directory + "/" + path.kernel_file);
     description.entry_point = path.entry_point;
     description.bindings = {{0, false}, {1, false}, {2, false}, {3, false}, {4, false}, {5, false}};
-    ComputePipeline pipeline(context, description);
+    return description;
+}
+
+GpuBatchResult dispatch_conformance(ComputePipeline& pipeline, const std::vector<float>& queries,
+                                    const std::vector<float>& materials, int repeats)
+{
+    const std::size_t query_count = queries.size() / OPENPBR_QUERY_FLOATS;
 
     std::vector<std::byte> lut_bytes = to_bytes(shipped_lut());
     std::vector<std::byte> fuzz_bytes = to_bytes(shipped_fuzz_ltc());
@@ -108,9 +124,16 @@ GpuBatchResult execute_gpu_path(const GpuPath& path, VulkanContext& context, con
                                                 {4, &parameter_bytes, false}, {5, &result_bytes, true}};
     const std::uint32_t groups = std::uint32_t((query_count + 63) / 64);
     GpuBatchResult batch;
-    batch.timing = run(pipeline, buffers, groups, 1, 1, 3);
+    batch.timing = run(pipeline, buffers, groups, 1, 1, repeats);
     batch.results = from_bytes<float>(result_bytes);
     return batch;
+}
+
+GpuBatchResult execute_gpu_path(const GpuPath& path, VulkanContext& context, const std::vector<float>& queries,
+                                const std::vector<float>& materials, const std::string& kernel_directory)
+{
+    ComputePipeline pipeline(context, conformance_pipeline_description(path, kernel_directory));
+    return dispatch_conformance(pipeline, queries, materials, 3);
 }
 
 // Compares one path's results with the CPU build's (see the foundation issue's metrics).
@@ -164,14 +187,33 @@ void compare_with_cpu(ConformancePathResult& result, const std::vector<float>& q
 }
 
 ConformancePathResult run_gpu_path(const GpuPath& path, VulkanContext& context, const std::vector<float>& queries,
-                                   const std::vector<float>& materials, const std::vector<float>& cpu_results,
-                                   const ConformanceOptions& options)
+                                   const std::vector<Material>& material_list, const std::vector<float>& materials,
+                                   const std::vector<float>& cpu_results, const ConformanceOptions& options)
 {
     ConformancePathResult result;
     result.name = path.name;
     const std::size_t query_count = queries.size() / OPENPBR_QUERY_FLOATS;
     context.clear_validation_messages();
-    const GpuBatchResult batch = execute_gpu_path(path, context, queries, materials, options.kernel_directory);
+    GpuBatchResult batch;
+    if (options.specialize)
+    {
+        // One pipeline per toggle set the materials need (host/features.h); the first-dispatch
+        // time is that of every set together, the steady-state time the sum over the sets.
+        const SpecializedConformanceRun run = run_conformance_gpu_specialized(
+            path.name, context, queries, material_list, options.kernel_directory, std::nullopt, 3);
+        batch.results = run.results;
+        batch.timing.dispatch_ms = run.dispatch_ms;
+        for (const SpecializedPipelineTiming& pipeline : run.pipelines)
+        {
+            batch.timing.first_dispatch_ms += pipeline.first_dispatch_ms;
+        }
+        result.pipeline_count = run.pipeline_builds;
+    }
+    else
+    {
+        batch = execute_gpu_path(path, context, queries, materials, options.kernel_directory);
+        result.pipeline_count = 1;
+    }
     const DispatchTiming& timing = batch.timing;
     result.executed = true;
     result.note = context.device_name();
@@ -193,14 +235,64 @@ std::vector<float> run_conformance_gpu(const std::string& path_name, VulkanConte
                                        const std::vector<float>& queries, const std::vector<float>& materials,
                                        const std::string& kernel_directory)
 {
-    for (const GpuPath& path : gpu_paths())
+    return execute_gpu_path(find_gpu_path(path_name), context, queries, materials, kernel_directory).results;
+}
+
+SpecializedConformanceRun run_conformance_gpu_specialized(const std::string& path_name, VulkanContext& context,
+                                                          const std::vector<float>& queries,
+                                                          const std::vector<Material>& materials,
+                                                          const std::string& kernel_directory,
+                                                          std::optional<std::uint32_t> pipeline_mask, int repeats)
+{
+    if (pipeline_mask)
     {
-        if (path.name == path_name)
-        {
-            return execute_gpu_path(path, context, queries, materials, kernel_directory).results;
-        }
+        check_pipeline_supports(materials, *pipeline_mask);
     }
-    throw std::invalid_argument("unknown GPU path '" + path_name + "'");
+    SpecializedPipelineCache cache(context, conformance_pipeline_description(find_gpu_path(path_name), kernel_directory));
+    const std::vector<float> packed = pack_materials(materials);
+    const std::size_t query_count = queries.size() / OPENPBR_QUERY_FLOATS;
+    // Queries grouped by the toggle set of the pipeline that runs them.
+    std::map<std::uint32_t, std::vector<std::size_t>> groups;
+    for (std::size_t query = 0; query < query_count; ++query)
+    {
+        const std::size_t material = std::size_t(queries[query * OPENPBR_QUERY_FLOATS]);
+        if (material >= materials.size())
+        {
+            throw std::invalid_argument("query " + std::to_string(query) + " names material " + std::to_string(material) +
+                                        " of " + std::to_string(materials.size()));
+        }
+        groups[pipeline_mask ? *pipeline_mask : required_feature_mask(materials[material])].push_back(query);
+    }
+    SpecializedConformanceRun run;
+    run.results.assign(query_count * OPENPBR_RESULT_FLOATS, 0.0f);
+    for (const auto& [mask, members] : groups)
+    {
+        std::vector<float> group_queries(members.size() * OPENPBR_QUERY_FLOATS);
+        for (std::size_t i = 0; i < members.size(); ++i)
+        {
+            std::memcpy(&group_queries[i * OPENPBR_QUERY_FLOATS], &queries[members[i] * OPENPBR_QUERY_FLOATS],
+                        OPENPBR_QUERY_FLOATS * sizeof(float));
+        }
+        const std::size_t builds_before = cache.build_count();
+        ComputePipeline& pipeline = cache.pipeline(mask);
+        const GpuBatchResult batch = dispatch_conformance(pipeline, group_queries, packed, repeats);
+        for (std::size_t i = 0; i < members.size(); ++i)
+        {
+            std::memcpy(&run.results[members[i] * OPENPBR_RESULT_FLOATS], &batch.results[i * OPENPBR_RESULT_FLOATS],
+                        OPENPBR_RESULT_FLOATS * sizeof(float));
+        }
+        SpecializedPipelineTiming timing;
+        timing.mask = mask;
+        timing.query_count = members.size();
+        timing.built = cache.build_count() > builds_before;
+        timing.create_ms = pipeline.create_ms();
+        timing.first_dispatch_ms = batch.timing.first_dispatch_ms;
+        timing.dispatch_ms = batch.timing.dispatch_ms;
+        run.dispatch_ms += batch.timing.dispatch_ms;
+        run.pipelines.push_back(timing);
+    }
+    run.pipeline_builds = cache.build_count();
+    return run;
 }
 
 std::vector<std::string> known_conformance_paths()
@@ -360,7 +452,7 @@ ConformanceReport run_conformance(const std::vector<Material>& materials, const 
             report.paths.push_back(skipped);
             continue;
         }
-        report.paths.push_back(run_gpu_path(path, *context, queries, packed, cpu_results, options));
+        report.paths.push_back(run_gpu_path(path, *context, queries, materials, packed, cpu_results, options));
     }
     // CUDA runs in its own program (built with nvcc); it says plainly when no device exists.
     const bool wants_cuda = std::find(wanted.begin(), wanted.end(), "cuda") != wanted.end() ||
@@ -408,6 +500,7 @@ nlohmann::json to_json(const ConformanceReport& report)
                                  {"first_dispatch_ms", path.first_dispatch_ms},
                                  {"queries_per_second", path.queries_per_second},
                                  {"validation_messages", path.validation_messages},
+                                 {"pipelines", path.pipeline_count},
                                  {"worst_output", path.worst_output}});
     }
     return json;
@@ -429,7 +522,8 @@ std::string to_text(const ConformanceReport& report)
         text << "  " << path.name << " (" << path.note << "): max rel err " << path.max_relative_error
              << ", p99.9 " << path.p999_relative_error << ", non-finite " << path.nonfinite << ", lobe mismatch "
              << 100.0 * path.lobe_mismatch_fraction << " %, " << std::lround(path.queries_per_second)
-             << " queries/s, first dispatch " << path.first_dispatch_ms << " ms\n";
+             << " queries/s, first dispatch " << path.first_dispatch_ms << " ms, " << path.pipeline_count
+             << (path.pipeline_count == 1 ? " pipeline\n" : " pipelines\n");
         text << "    worst: " << path.worst_output << "\n";
     }
     return text.str();

@@ -5,6 +5,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -22,6 +23,9 @@ struct ConformanceOptions
     std::string kernel_directory;      // compiled kernels (.spv), e.g. build/kernels
     std::vector<std::string> paths;    // GPU paths to run, e.g. {"slang-spirv"}; empty = all known
     bool validation = false;           // Vulkan validation layers (on in tests)
+    // One pipeline per toggle set the materials need (host/features.h) instead of the full
+    // pipeline, e.g. true for `openpbr conformance --specialize`.
+    bool specialize = false;
 };
 
 // Per GPU path, the comparison against the CPU build.
@@ -38,6 +42,7 @@ struct ConformancePathResult
     double queries_per_second = 0.0;
     std::size_t validation_messages = 0;
     std::string worst_output;    // where the maximum error occurred, for diagnosis
+    std::size_t pipeline_count = 0;  // pipelines built (one per toggle set when specialized)
 };
 
 struct ConformanceReport
@@ -70,6 +75,37 @@ std::vector<float> run_conformance_cpu(const std::vector<float>& queries, const 
 std::vector<float> run_conformance_gpu(const std::string& path_name, VulkanContext& context,
                                        const std::vector<float>& queries, const std::vector<float>& materials,
                                        const std::string& kernel_directory);
+
+// One dispatch group of a specialized run: the toggle set, its pipeline's creation and first
+// dispatch (where llvmpipe compiles), and the steady-state dispatch time (median of repeats).
+struct SpecializedPipelineTiming
+{
+    std::uint32_t mask = 0;  // OPENPBR_FEATURE_BIT_*
+    std::size_t query_count = 0;
+    bool built = false;  // false: the pipeline came from the cache
+    double create_ms = 0.0;
+    double first_dispatch_ms = 0.0;
+    double dispatch_ms = 0.0;
+};
+
+struct SpecializedConformanceRun
+{
+    std::vector<float> results;  // laid out like run_conformance_cpu's
+    std::vector<SpecializedPipelineTiming> pipelines;
+    std::size_t pipeline_builds = 0;
+    double dispatch_ms = 0.0;  // sum of the groups' steady-state dispatch times
+};
+
+// One GPU path with one pipeline per toggle set (host/features.h): with `pipeline_mask`
+// unset, each query runs on the pipeline specialized to its material's needs (pipelines built
+// once per set and cached); with it set, every query runs on that one pipeline, after
+// check_pipeline_supports refused (FeatureError) any material that needs more. `repeats` >= 1
+// dispatches per group (steady-state timing from the second on).
+SpecializedConformanceRun run_conformance_gpu_specialized(const std::string& path_name, VulkanContext& context,
+                                                          const std::vector<float>& queries,
+                                                          const std::vector<Material>& materials,
+                                                          const std::string& kernel_directory,
+                                                          std::optional<std::uint32_t> pipeline_mask, int repeats);
 
 ConformanceReport run_conformance(const std::vector<Material>& materials, const ConformanceOptions& options);
 

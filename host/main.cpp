@@ -6,13 +6,16 @@
 
 #include <CLI/CLI.hpp>
 
+#include "host/accuracy_command.h"
 #include "host/compile_targets.h"
 #include "host/conformance.h"
+#include "host/features_command.h"
 #include "host/furnace_command.h"
 #include "host/fuzz_fit.h"
 #include "host/lut_generator.h"
 #include "host/material_library.h"
 #include "host/render_command.h"
+#include "host/stability_command.h"
 
 #ifndef OPENPBR_DEFAULT_MATERIALS_DIR
 #define OPENPBR_DEFAULT_MATERIALS_DIR "materials"
@@ -79,6 +82,8 @@ int main(int argc, char** argv)
     conformance->add_option("--paths", conformance_options.paths, "GPU paths to run (default: all)");
     conformance->add_option("--materials", material_files, "material files (default: the materials directory)");
     conformance->add_flag("--validation", validation, "enable Vulkan validation layers");
+    conformance->add_flag("--specialize", conformance_options.specialize,
+                          "one pipeline per feature-toggle set the materials need (default: the full pipeline)");
 
     CLI::App* lutgen = app.add_subcommand("lutgen", "generate the energy-compensation tables (Monte Carlo)");
     openpbr::host::LutGeneratorOptions lut_options;
@@ -116,6 +121,10 @@ int main(int argc, char** argv)
 
     openpbr::host::RenderCommand render = openpbr::host::add_render_subcommand(app);
     openpbr::host::FurnaceCommand furnace = openpbr::host::add_furnace_subcommand(app);
+    openpbr::host::add_features_subcommands(app, materials_directory, kernel_directory);
+    // Exit status 0 clean, 2 when a path produced a non-finite or negative output, 1 on errors.
+    openpbr::host::add_stability_subcommand(app, OPENPBR_DEFAULT_STABILITY_CORPUS, kernel_directory);
+    openpbr::host::add_bench_accuracy_subcommand(app);  // after "bench" exists (features)
 
     CLI11_PARSE(app, argc, argv);
 

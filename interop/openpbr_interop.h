@@ -59,7 +59,8 @@
 
 // Every backend must provide these; checked here so a new backend fails loudly.
 #if !defined(OPENPBR_FUNC) || !defined(OPENPBR_IN) || !defined(OPENPBR_INOUT) || \
-    !defined(OPENPBR_OUT) || !defined(OPENPBR_UNUSED) || !defined(OPENPBR_NAMESPACE_BEGIN) || !defined(OPENPBR_NAMESPACE_END)
+    !defined(OPENPBR_OUT) || !defined(OPENPBR_UNUSED) || !defined(OPENPBR_NAMESPACE_BEGIN) || !defined(OPENPBR_NAMESPACE_END) || \
+    !defined(OPENPBR_DECLARE_SPECIALIZATION_CONSTANT) || !defined(OPENPBR_GET_SPECIALIZATION_CONSTANT)
 #error "openpbr_interop.h: the selected backend does not define the full macro set"
 #endif
 

@@ -7,11 +7,40 @@
 #include <cstdint>
 #include <glm/glm.hpp>
 
+// A build of the BSDF with other compile-time feature toggles (e.g. -DOPENPBR_FEATURE_COAT=0)
+// in a program that also has the default build needs its own namespace, or the two sets of
+// inline functions would break the one-definition rule: OPENPBR_CPP_VARIANT_NAMESPACE, e.g.
+// base_only, puts that translation unit's BSDF in openpbr::base_only (the shared tables stay
+// in openpbr). Unset (the default): namespace openpbr.
+#if defined(OPENPBR_CPP_VARIANT_NAMESPACE)
+#define OPENPBR_NAMESPACE_BEGIN                    \
+    namespace openpbr {                            \
+    namespace OPENPBR_CPP_VARIANT_NAMESPACE {      \
+    using namespace glm;                           \
+    typedef unsigned int uint;
+#define OPENPBR_NAMESPACE_END \
+    }                         \
+    }
+#else
 #define OPENPBR_NAMESPACE_BEGIN \
     namespace openpbr {         \
     using namespace glm;        \
     typedef unsigned int uint;
 #define OPENPBR_NAMESPACE_END }
+#endif
+
+// Feature toggles (slang/openpbr_features.h), run-time form: bit k of the mask is the toggle
+// with constant id k, all on by default; e.g. openpbr::openpbr_runtime_feature_mask =
+// OPENPBR_FEATURE_BIT_COAT | OPENPBR_FEATURE_BIT_METAL renders with only coat and metal
+// (host::ScopedFeatureMask sets and restores it). Process-wide, like a pipeline's
+// specialization: set it before shading, not while other threads shade. The compile-time form
+// (-DOPENPBR_FEATURE_<NAME>=0) overrides it.
+namespace openpbr {
+inline std::uint32_t openpbr_runtime_feature_mask = 0xffffffffu;
+}
+#define OPENPBR_DECLARE_SPECIALIZATION_CONSTANT(name)
+#define OPENPBR_GET_SPECIALIZATION_CONSTANT(name) \
+    (((::openpbr::openpbr_runtime_feature_mask >> OPENPBR_SPECIALIZATION_ID_##name) & 1u) != 0u)
 
 // Header-only: every function is inline; structs go by const reference to avoid copies.
 #define OPENPBR_FUNC inline
@@ -22,9 +51,9 @@
 #define OPENPBR_UNUSED(name) (void)(name)
 #define OPENPBR_OUT(type) type&
 
-namespace openpbr {
+OPENPBR_NAMESPACE_BEGIN
 // GLSL has atan(y, x); the dialect spells it atan2 so Slang/HLSL/Metal need no wrapper.
 inline float atan2(float y, float x) { return std::atan2(y, x); }
-}  // namespace openpbr
+OPENPBR_NAMESPACE_END
 
 #endif

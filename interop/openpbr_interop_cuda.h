@@ -20,6 +20,11 @@
 #define OPENPBR_UNUSED(name) (void)(name)
 #define OPENPBR_OUT(type) type&
 
+// Feature toggles (slang/openpbr_features.h): CUDA has no specialization constants, so the
+// toggles are compile-time permutations, e.g. nvcc -DOPENPBR_FEATURE_COAT=0; all on otherwise.
+#define OPENPBR_DECLARE_SPECIALIZATION_CONSTANT(name)
+#define OPENPBR_GET_SPECIALIZATION_CONSTANT(name) true
+
 namespace openpbr {
 __host__ __device__ inline float atan2(float y, float x) { return ::atan2f(y, x); }
 }  // namespace openpbr

@@ -13,6 +13,12 @@
 #define OPENPBR_UNUSED(name)
 #define OPENPBR_OUT(type) out type
 
+// Feature toggles (slang/openpbr_features.h): SPIR-V specialization constants with stable ids
+// (OPENPBR_SPECIALIZATION_ID_<name>), on unless the pipeline's VkSpecializationInfo says false.
+#define OPENPBR_DECLARE_SPECIALIZATION_CONSTANT(name) \
+    layout(constant_id = OPENPBR_SPECIALIZATION_ID_##name) const bool name = true;
+#define OPENPBR_GET_SPECIALIZATION_CONSTANT(name) name
+
 float atan2(float y, float x) { return atan(y, x); }
 
 #endif

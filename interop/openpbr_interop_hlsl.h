@@ -40,6 +40,11 @@
 #define OPENPBR_UNUSED(name)
 #define OPENPBR_OUT(type) out type
 
+// Feature toggles (slang/openpbr_features.h): compile-time permutations, e.g. dxc
+// -DOPENPBR_FEATURE_COAT=0; DXIL has no specialization constants (a uniform would fold nothing).
+#define OPENPBR_DECLARE_SPECIALIZATION_CONSTANT(name)
+#define OPENPBR_GET_SPECIALIZATION_CONSTANT(name) true
+
 // Vector from one value, the HLSL spelling of the dialect's vec2(x), vec3(x), vec4(x): a
 // scalar is replicated, a vector of the same size passes through.
 float2 openpbr_splat2(float x) { return float2(x, x); }

@@ -21,4 +21,11 @@
 #define OPENPBR_UNUSED(name) (void)(name)
 #define OPENPBR_OUT(type) thread type&
 
+// Feature toggles (slang/openpbr_features.h): Metal function constants at the stable ids
+// (MTLFunctionConstantValues setConstantValue:type:atIndex:); a constant the application does
+// not set is on.
+#define OPENPBR_DECLARE_SPECIALIZATION_CONSTANT(name) \
+    constant bool name [[function_constant(OPENPBR_SPECIALIZATION_ID_##name)]];
+#define OPENPBR_GET_SPECIALIZATION_CONSTANT(name) (is_function_constant_defined(name) ? name : true)
+
 #endif

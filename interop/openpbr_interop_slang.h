@@ -26,4 +26,21 @@
 #define OPENPBR_UNUSED(name)
 #define OPENPBR_OUT(type) out type
 
+// Feature toggles (slang/openpbr_features.h): SPIR-V specialization constants with stable ids
+// (OPENPBR_SPECIALIZATION_ID_<name>). For HLSL and CUDA output Slang would turn them into
+// uniforms, which the downstream compiler cannot fold; those builds pass
+// -DOPENPBR_SPECIALIZATION_CONSTANTS=0 and choose toggles as compile-time permutations, e.g.
+// -DOPENPBR_FEATURE_COAT=0 (default 1: specialization constants).
+#ifndef OPENPBR_SPECIALIZATION_CONSTANTS
+#define OPENPBR_SPECIALIZATION_CONSTANTS 1
+#endif
+#if OPENPBR_SPECIALIZATION_CONSTANTS
+#define OPENPBR_DECLARE_SPECIALIZATION_CONSTANT(name) \
+    [vk::constant_id(OPENPBR_SPECIALIZATION_ID_##name)] const bool name = true;
+#define OPENPBR_GET_SPECIALIZATION_CONSTANT(name) name
+#else
+#define OPENPBR_DECLARE_SPECIALIZATION_CONSTANT(name)
+#define OPENPBR_GET_SPECIALIZATION_CONSTANT(name) true
+#endif
+
 #endif

@@ -22,6 +22,7 @@
 #define OPENPBR_BSDF_H
 
 #include "openpbr_input_contract.h"
+#include "openpbr_features.h"
 #include "openpbr_lut.h"
 #include "openpbr_volume.h"
 #include "lobes/openpbr_dielectric_lobe.h"
@@ -75,6 +76,7 @@ struct OpenPBR_PreparedBsdf
     vec3 under_coat_constant;
     vec3 under_coat_absorbing;
     vec3 coat_half_log_color;  // 0.5 ln(coat_color); 0 when the coat does not absorb
+    bool coat_absorbs;         // false: T(light) = 1, so eval and sample skip its exp
     float coat_inverse_eta_squared;
     vec3 under_coat_transmitted;  // the factor for lights below (the coat is crossed once)
 
@@ -194,7 +196,9 @@ OPENPBR_FUNC float openpbr_modulated_ior(float eta, float specular_weight)
     const float f0 = openpbr_dielectric_f0(eta);
     const float xi = min(specular_weight, 0.9999f / max(f0, 1e-8f));
     const float epsilon = (eta >= 1.0f ? 1.0f : -1.0f) * sqrt(xi * f0);
-    return (1.0f + epsilon) / (1.0f - epsilon);
+    // xi > 1 pushes eta' past the input contract's [1/3, 3] (e.g. xi = 5 at eta = 3 gives
+    // eta' ~ 4e4), outside the compensation tables: clamp after modulation as well.
+    return clamp((1.0f + epsilon) / (1.0f - epsilon), OPENPBR_IOR_MIN, OPENPBR_IOR_MAX);
 }
 
 // Spec "Coat" darkening: hemispherical average of the dielectric Fresnel factor, the spec's
@@ -220,14 +224,23 @@ OPENPBR_FUNC vec3 openpbr_dispersive_ior(float ior_d, float abbe_number, float d
     const float inverse_c2 = 1.0f / (656.3f * 656.3f);
     const float b = (ior_d - 1.0f) / (abbe * (inverse_f2 - inverse_c2));
     const float a = ior_d - b / (587.6f * 587.6f);
-    const vec3 lambda = clamp(wavelengths_nm, vec3(300.0f), vec3(1000.0f));
+    // NaN or infinite wavelengths (caller input) map into the range too: NaN to 300 nm, so the
+    // IOR and every table coordinate derived from it stay finite.
+    const vec3 lambda = openpbr_clamp_finite(wavelengths_nm, 300.0f, 1000.0f);
     return clamp(vec3(a) + b / (lambda * lambda), vec3(OPENPBR_IOR_MIN), vec3(OPENPBR_IOR_MAX));
+}
+
+// The inputs every prepare step reads: the input contract (README "Input contract"), then the
+// feature toggles (slang/openpbr_features.h); run once per prepare.
+OPENPBR_FUNC OpenPBR_ResolvedInputs openpbr_prepare_inputs(OPENPBR_IN(OpenPBR_ResolvedInputs) raw_inputs)
+{
+    return openpbr_apply_feature_toggles(openpbr_apply_input_contract(raw_inputs));
 }
 
 // Whether results depend on the wavelengths passed to prepare (dispersive transmission).
 OPENPBR_FUNC bool openpbr_needs_rgb_wavelengths(OPENPBR_IN(OpenPBR_ResolvedInputs) raw_inputs)
 {
-    const OpenPBR_ResolvedInputs inputs = openpbr_apply_input_contract(raw_inputs);
+    const OpenPBR_ResolvedInputs inputs = openpbr_prepare_inputs(raw_inputs);
     return inputs.transmission_dispersion_scale > 0.0f && inputs.transmission_weight > 0.0f &&
            inputs.base_metalness < 1.0f && inputs.geometry_opacity > 0.0f && !inputs.geometry_thin_walled;
 }
@@ -248,10 +261,13 @@ OPENPBR_FUNC OpenPBR_Basis openpbr_flip_basis(OPENPBR_IN(OpenPBR_Basis) basis)
     return flipped;
 }
 
-OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare_lobes(OPENPBR_IN(OpenPBR_ResolvedInputs) raw_inputs,
-                                                        vec3 view_world, vec3 rgb_wavelengths_nm)
+// Every lobe below is set up only where its weight is above zero (issue "a lobe whose weight is
+// zero costs nothing"): the others keep the empty lobe and selection probability 0, which eval,
+// pdf and sample never look at. With a feature toggled off its weight is the constant 0, so the
+// compiler removes the set-up altogether. `inputs` have passed openpbr_prepare_inputs.
+OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare_lobes_of(OPENPBR_IN(OpenPBR_ResolvedInputs) inputs, vec3 view_world,
+                                                           vec3 rgb_wavelengths_nm)
 {
-    const OpenPBR_ResolvedInputs inputs = openpbr_apply_input_contract(raw_inputs);
     OpenPBR_PreparedBsdf bsdf;
     bsdf.view_world = openpbr_safe_normalize(view_world, inputs.geometry_basis.normal);
     const float opacity = inputs.geometry_opacity;
@@ -266,13 +282,24 @@ OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare_lobes(OPENPBR_IN(OpenPBR_Resol
     bsdf.inside = back_face && !thin_walled && entering_weight > 0.0f && opacity > 0.0f;
     bsdf.basis = back_face ? openpbr_flip_basis(inputs.geometry_basis) : inputs.geometry_basis;
     bsdf.coat_basis = back_face ? openpbr_flip_basis(inputs.geometry_coat_basis) : inputs.geometry_coat_basis;
-    bsdf.fuzz_basis = openpbr_make_basis(mix(bsdf.basis.normal, bsdf.coat_basis.normal, coat_weight));
     bsdf.view = openpbr_to_local(bsdf.basis, bsdf.view_world);
     bsdf.view.z = max(bsdf.view.z, 0.0f);
-    bsdf.coat_view = openpbr_to_local(bsdf.coat_basis, bsdf.view_world);
-    bsdf.coat_view.z = max(bsdf.coat_view.z, 0.0f);
-    bsdf.fuzz_view = openpbr_to_local(bsdf.fuzz_basis, bsdf.view_world);
-    bsdf.fuzz_view.z = max(bsdf.fuzz_view.z, 0.0f);
+    // Coat and fuzz frames only where those layers exist; otherwise the base frame stands in
+    // (eval then transforms the light once).
+    bsdf.coat_view = bsdf.view;
+    if (coat_weight > 0.0f)
+    {
+        bsdf.coat_view = openpbr_to_local(bsdf.coat_basis, bsdf.view_world);
+        bsdf.coat_view.z = max(bsdf.coat_view.z, 0.0f);
+    }
+    bsdf.fuzz_basis = bsdf.basis;
+    bsdf.fuzz_view = bsdf.view;
+    if (fuzz_weight > 0.0f)
+    {
+        bsdf.fuzz_basis = openpbr_make_basis(mix(bsdf.basis.normal, bsdf.coat_basis.normal, coat_weight));
+        bsdf.fuzz_view = openpbr_to_local(bsdf.fuzz_basis, bsdf.view_world);
+        bsdf.fuzz_view.z = max(bsdf.fuzz_view.z, 0.0f);
+    }
     const vec3 view = bsdf.view;
     const float mu = view.z;
     // The interior medium exists only where light can enter (the volume helper returns an empty
@@ -285,7 +312,8 @@ OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare_lobes(OPENPBR_IN(OpenPBR_Resol
     const float coat_ior = inputs.coat_ior;
     const float base_ior = inputs.specular_ior;
     const float base_over_coat = coat_ior > base_ior ? coat_ior / base_ior : base_ior / coat_ior;
-    const float eta_base = openpbr_modulated_ior(mix(base_ior, base_over_coat, coat_weight), inputs.specular_weight);
+    const float eta_base = openpbr_modulated_ior(coat_weight > 0.0f ? mix(base_ior, base_over_coat, coat_weight) : base_ior,
+                                                 inputs.specular_weight);
     const vec3 eta_channels = openpbr_dispersive_ior(eta_base, inputs.transmission_dispersion_abbe_number,
                                                      thin_walled ? 0.0f : inputs.transmission_dispersion_scale,
                                                      rgb_wavelengths_nm);
@@ -293,8 +321,10 @@ OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare_lobes(OPENPBR_IN(OpenPBR_Resol
     // ---- Roughness: the coat roughens the base (spec "Coat", roughening) ----
     const float coat_roughness = inputs.coat_roughness;
     const float base_roughness =
-        mix(inputs.specular_roughness,
-            pow(min(1.0f, pow(inputs.specular_roughness, 4.0f) + 2.0f * pow(coat_roughness, 4.0f)), 0.25f), coat_weight);
+        coat_weight > 0.0f
+            ? mix(inputs.specular_roughness,
+                  pow(min(1.0f, pow(inputs.specular_roughness, 4.0f) + 2.0f * pow(coat_roughness, 4.0f)), 0.25f), coat_weight)
+            : inputs.specular_roughness;
     const vec2 alpha = openpbr_ggx_alpha(base_roughness, inputs.specular_roughness_anisotropy);
     const OpenPBR_GgxLobeAlbedo base_lobe_albedo =
         openpbr_ggx_lobe_albedo(base_roughness, inputs.specular_roughness_anisotropy, alpha, view);
@@ -312,19 +342,22 @@ OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare_lobes(OPENPBR_IN(OpenPBR_Resol
     bsdf.under_coat_constant = vec3(1.0f);
     bsdf.under_coat_absorbing = vec3(0.0f);
     bsdf.coat_half_log_color = vec3(0.0f);
+    bsdf.coat_absorbs = false;
     bsdf.coat_inverse_eta_squared = 1.0f / (coat_ior * coat_ior);
     bsdf.under_coat_transmitted = vec3(1.0f);
     const vec3 zero = vec3(0.0f);
     const OpenPBR_Fresnel no_fresnel = openpbr_make_constant_fresnel(vec3(1.0f));
-    bsdf.fuzz = openpbr_fuzz_lobe_init(zero, zero, inputs.fuzz_roughness, bsdf.fuzz_view);
-    bsdf.coat = openpbr_microfacet_reflection_lobe_init(zero, alpha, no_fresnel, OPENPBR_LOBE_ID_COAT, 1.0f, view);
-    bsdf.specular = bsdf.coat;
-    bsdf.metal = bsdf.coat;
-    bsdf.thin_transmission = bsdf.coat;
-    bsdf.diffuse = openpbr_diffuse_lobe_init(zero, zero, 0.0f, 1.0f, view);
-    bsdf.diffuse_transmission = bsdf.diffuse;
-    bsdf.transmission = openpbr_dielectric_lobe_init(zero, zero, alpha, eta_channels, false,
-                                                     OPENPBR_LOBE_ID_SPECULAR_TRANSMISSION, view);
+    // Empty lobes: every argument is a constant, so these fold to stores of constants.
+    const vec3 normal_view = vec3(0.0f, 0.0f, 1.0f);
+    bsdf.fuzz = openpbr_fuzz_lobe_empty();
+    bsdf.coat = openpbr_microfacet_reflection_lobe_empty(OPENPBR_LOBE_ID_COAT);
+    bsdf.specular = openpbr_microfacet_reflection_lobe_empty(OPENPBR_LOBE_ID_SPECULAR_REFLECTION);
+    bsdf.metal = openpbr_microfacet_reflection_lobe_empty(OPENPBR_LOBE_ID_METAL);
+    bsdf.thin_transmission = openpbr_microfacet_reflection_lobe_empty(OPENPBR_LOBE_ID_SPECULAR_TRANSMISSION);
+    bsdf.diffuse = openpbr_diffuse_lobe_init(zero, zero, 0.0f, 1.0f, normal_view);
+    bsdf.diffuse_transmission = openpbr_diffuse_lobe_init(zero, zero, 0.0f, -1.0f, normal_view);
+    bsdf.transmission = openpbr_dielectric_lobe_init(zero, zero, vec2(1.0f), vec3(1.0f), false,
+                                                     OPENPBR_LOBE_ID_SPECULAR_TRANSMISSION, normal_view);
 
     if (bsdf.inside)
     {
@@ -335,8 +368,9 @@ OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare_lobes(OPENPBR_IN(OpenPBR_Resol
         const float compensation =
             openpbr_ggx_is_delta(alpha) ? 1.0f
                                         : 1.0f / max(openpbr_dielectric_interface_albedo(mu, table_alpha, eta_inside.y), 0.05f);
-        const vec3 exit_factor = mix(vec3(1.0f), sqrt(inputs.coat_color), coat_weight) *
-                                 (1.0f - fuzz_weight * openpbr_fuzz_albedo_white(1.0f, inputs.fuzz_roughness));
+        const vec3 exit_factor =
+            (coat_weight > 0.0f ? mix(vec3(1.0f), sqrt(inputs.coat_color), coat_weight) : vec3(1.0f)) *
+            (fuzz_weight > 0.0f ? 1.0f - fuzz_weight * openpbr_fuzz_albedo_white(1.0f, inputs.fuzz_roughness) : 1.0f);
         const float weight = opacity * compensation;
         bsdf.transmission = openpbr_dielectric_lobe_init(vec3(weight), exit_factor * weight, alpha, eta_inside, true,
                                                          OPENPBR_LOBE_ID_INTERFACE_FROM_INSIDE, view);
@@ -347,30 +381,41 @@ OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare_lobes(OPENPBR_IN(OpenPBR_Resol
     }
 
     // ---- Fuzz (spec "Fuzz"): F f_fuzz + (1 - F E_fuzz) f_coated ----
-    const float fuzz_albedo_white = fuzz_weight > 0.0f ? openpbr_fuzz_albedo_white(bsdf.fuzz_view.z, inputs.fuzz_roughness) : 0.0f;
-    bsdf.fuzz = openpbr_fuzz_lobe_init(vec3(opacity * fuzz_weight), inputs.fuzz_color, inputs.fuzz_roughness, bsdf.fuzz_view);
-    const float under_fuzz = opacity * (1.0f - fuzz_weight * fuzz_albedo_white);
+    float under_fuzz = opacity;
+    if (fuzz_weight > 0.0f)
+    {
+        const float fuzz_albedo_white = openpbr_fuzz_albedo_white(bsdf.fuzz_view.z, inputs.fuzz_roughness);
+        bsdf.fuzz = openpbr_fuzz_lobe_init(vec3(opacity * fuzz_weight), inputs.fuzz_color, inputs.fuzz_roughness, bsdf.fuzz_view);
+        under_fuzz = opacity * (1.0f - fuzz_weight * fuzz_albedo_white);
+    }
 
     // ---- Coat (spec "Coat"): C f_coat + lerp(1, T_coat (1 - E_coat), C) darkening f_base ----
-    const vec2 coat_alpha = openpbr_ggx_alpha(coat_roughness, inputs.coat_roughness_anisotropy);
     const float coat_mu = bsdf.coat_view.z;
-    const OpenPBR_GgxLobeAlbedo coat_lobe_albedo =
-        openpbr_ggx_lobe_albedo(coat_roughness, inputs.coat_roughness_anisotropy, coat_alpha, bsdf.coat_view);
-    const OpenPBR_Fresnel coat_fresnel = openpbr_make_dielectric_fresnel(coat_ior, vec3(1.0f));
-    const vec3 coat_compensation =
-        openpbr_multiple_scattering_compensation(vec3(openpbr_dielectric_f0(coat_ior)), coat_lobe_albedo.albedo);
-    bsdf.coat = openpbr_microfacet_reflection_lobe_init(coat_compensation * (under_fuzz * coat_weight), coat_alpha,
-                                                        coat_fresnel, OPENPBR_LOBE_ID_COAT, 1.0f, bsdf.coat_view);
-    const float coat_single_albedo =
-        bsdf.coat.is_delta ? openpbr_fresnel_dielectric(coat_mu, coat_ior)
-                           : openpbr_dielectric_reflection_albedo(coat_mu, coat_lobe_albedo.reflection_alpha, coat_ior) *
-                                 coat_lobe_albedo.reflection_scale;
-    const float coat_albedo = min(coat_single_albedo * coat_compensation.x, 1.0f);
-    const bool coat_absorbs = coat_weight > 0.0f && !(inputs.coat_color.x == 1.0f && inputs.coat_color.y == 1.0f &&
-                                                      inputs.coat_color.z == 1.0f);
-    bsdf.coat_half_log_color = coat_absorbs ? 0.5f * log(max(inputs.coat_color, vec3(1e-6f))) : vec3(0.0f);
-    const vec3 coat_view_transmittance =
-        openpbr_coat_transmittance(bsdf.coat_half_log_color, bsdf.coat_inverse_eta_squared, coat_mu);
+    float coat_albedo = 0.0f;
+    vec3 coat_view_transmittance = vec3(1.0f);
+    if (coat_weight > 0.0f)
+    {
+        const vec2 coat_alpha = openpbr_ggx_alpha(coat_roughness, inputs.coat_roughness_anisotropy);
+        const OpenPBR_GgxLobeAlbedo coat_lobe_albedo =
+            openpbr_ggx_lobe_albedo(coat_roughness, inputs.coat_roughness_anisotropy, coat_alpha, bsdf.coat_view);
+        const OpenPBR_Fresnel coat_fresnel = openpbr_make_dielectric_fresnel(coat_ior, vec3(1.0f));
+        const vec3 coat_compensation =
+            openpbr_multiple_scattering_compensation(vec3(openpbr_dielectric_f0(coat_ior)), coat_lobe_albedo.albedo);
+        bsdf.coat = openpbr_microfacet_reflection_lobe_init(coat_compensation * (under_fuzz * coat_weight), coat_alpha,
+                                                            coat_fresnel, OPENPBR_LOBE_ID_COAT, 1.0f, bsdf.coat_view);
+        const float coat_single_albedo =
+            bsdf.coat.is_delta ? openpbr_fresnel_dielectric(coat_mu, coat_ior)
+                               : openpbr_dielectric_reflection_albedo(coat_mu, coat_lobe_albedo.reflection_alpha, coat_ior) *
+                                     coat_lobe_albedo.reflection_scale;
+        coat_albedo = min(coat_single_albedo * coat_compensation.x, 1.0f);
+        bsdf.coat_absorbs = !(inputs.coat_color.x == 1.0f && inputs.coat_color.y == 1.0f && inputs.coat_color.z == 1.0f);
+        if (bsdf.coat_absorbs)
+        {
+            bsdf.coat_half_log_color = 0.5f * log(max(inputs.coat_color, vec3(1e-6f)));
+            coat_view_transmittance =
+                openpbr_coat_transmittance(bsdf.coat_half_log_color, bsdf.coat_inverse_eta_squared, coat_mu);
+        }
+    }
 
     // ---- Base substrate, with unit layering factor first (albedos feed darkening) ----
     // Dielectric specular reflection, tinted by specular_color (reflection from above only).
@@ -378,30 +423,37 @@ OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare_lobes(OPENPBR_IN(OpenPBR_Resol
     // under the coat; the medium above it is the coat where there is one (IOR blended by
     // coat_weight, the spec's "depending on coat coverage").
     const float film_weight = inputs.thin_film_weight;
-    const float film_outside_ior = mix(1.0f, coat_ior, coat_weight);
-    const OpenPBR_Fresnel dielectric_fresnel =
-        openpbr_add_thin_film(openpbr_make_dielectric_fresnel(eta_channels.y, inputs.specular_color), film_weight,
-                              inputs.thin_film_thickness, inputs.thin_film_ior, film_outside_ior);
-    const vec3 specular_compensation =
-        openpbr_multiple_scattering_compensation(vec3(openpbr_dielectric_f0(eta_channels.y)), base_lobe_albedo.albedo);
+    const float film_outside_ior = coat_weight > 0.0f ? mix(1.0f, coat_ior, coat_weight) : 1.0f;
     const float dielectric_weight = 1.0f - metalness;
-    const bool specular_is_delta = openpbr_ggx_is_delta(alpha);
-    const float plain_reflection_albedo =
-        specular_is_delta ? openpbr_fresnel_dielectric(mu, eta_channels.y)
-                          : openpbr_dielectric_reflection_albedo(mu, base_lobe_albedo.reflection_alpha, eta_channels.y) *
-                                base_lobe_albedo.reflection_scale;
-    // With a film, E[f^R] moves by the film's change of the Fresnel factor averaged over the
-    // lobe, times the lobe's F = 1 albedo (the tables hold no film): exact for a mirror.
-    vec3 reflection_albedo = vec3(plain_reflection_albedo);
-    if (film_weight > 0.0f)
+    vec3 specular_albedo = vec3(0.0f);
+    if (dielectric_weight > 0.0f)
     {
-        OpenPBR_Fresnel untinted = dielectric_fresnel;
-        untinted.tint = vec3(1.0f);
-        reflection_albedo = max(reflection_albedo + openpbr_film_fresnel_change(untinted, eta_channels.y, view, alpha) *
-                                                        base_lobe_albedo.albedo,
-                                vec3(0.0f));
+        const OpenPBR_Fresnel dielectric_fresnel =
+            openpbr_add_thin_film(openpbr_make_dielectric_fresnel(eta_channels.y, inputs.specular_color), film_weight,
+                                  inputs.thin_film_thickness, inputs.thin_film_ior, film_outside_ior);
+        const vec3 specular_compensation =
+            openpbr_multiple_scattering_compensation(vec3(openpbr_dielectric_f0(eta_channels.y)), base_lobe_albedo.albedo);
+        const float plain_reflection_albedo =
+            openpbr_ggx_is_delta(alpha)
+                ? openpbr_fresnel_dielectric(mu, eta_channels.y)
+                : openpbr_dielectric_reflection_albedo(mu, base_lobe_albedo.reflection_alpha, eta_channels.y) *
+                      base_lobe_albedo.reflection_scale;
+        // With a film, E[f^R] moves by the film's change of the Fresnel factor averaged over the
+        // lobe, times the lobe's F = 1 albedo (the tables hold no film): exact for a mirror.
+        vec3 reflection_albedo = vec3(plain_reflection_albedo);
+        if (film_weight > 0.0f)
+        {
+            OpenPBR_Fresnel untinted = dielectric_fresnel;
+            untinted.tint = vec3(1.0f);
+            reflection_albedo = max(reflection_albedo + openpbr_film_fresnel_change(untinted, eta_channels.y, view, alpha) *
+                                                            base_lobe_albedo.albedo,
+                                    vec3(0.0f));
+        }
+        specular_albedo = openpbr_saturate(inputs.specular_color * specular_compensation * reflection_albedo);
+        bsdf.specular = openpbr_microfacet_reflection_lobe_init(specular_compensation * dielectric_weight, alpha,
+                                                                dielectric_fresnel, OPENPBR_LOBE_ID_SPECULAR_REFLECTION,
+                                                                1.0f, view);
     }
-    const vec3 specular_albedo = openpbr_saturate(inputs.specular_color * specular_compensation * reflection_albedo);
     const vec3 under_specular = vec3(1.0f) - specular_albedo;
 
     // What passes the specular interface splits into translucent, subsurface and diffuse.
@@ -410,53 +462,67 @@ OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare_lobes(OPENPBR_IN(OpenPBR_Resol
     const float diffuse_fraction = (1.0f - translucent) * (1.0f - inputs.subsurface_weight);
     vec3 diffuse_weight = under_specular * (dielectric_weight * diffuse_fraction * inputs.base_weight);
     vec3 diffuse_color = inputs.base_color;
-    vec3 diffuse_transmission_weight = vec3(0.0f);
     vec3 transmission_weight = vec3(0.0f);
     vec3 thin_transmission_weight = vec3(0.0f);
-    if (thin_walled)
+    const float entering = dielectric_weight * (translucent + subsurface);
+    if (thin_walled && entering > 0.0f)
     {
         // Thin-walled (spec "Thin-walled case"): subsurface becomes a thin scattering sheet,
         // reflection 1/2 S (1 - g), transmission 1/2 S (1 + g), both diffuse lobes; the
         // translucent base becomes an un-deflected transmission tinted by transmission_color.
-        const float g = inputs.subsurface_scatter_anisotropy;
-        const vec3 sheet = under_specular * (dielectric_weight * subsurface);
-        diffuse_color = (diffuse_weight * inputs.base_color + sheet * (0.5f * (1.0f - g)) * inputs.subsurface_color) /
-                        max(diffuse_weight + sheet * (0.5f * (1.0f - g)), vec3(1e-12f));
-        diffuse_weight = diffuse_weight + sheet * (0.5f * (1.0f - g));
-        diffuse_transmission_weight = sheet * (0.5f * (1.0f + g));
-        thin_transmission_weight = under_specular * (dielectric_weight * translucent) * inputs.transmission_color;
+        if (subsurface > 0.0f)
+        {
+            const float g = inputs.subsurface_scatter_anisotropy;
+            const vec3 sheet = under_specular * (dielectric_weight * subsurface);
+            diffuse_color = (diffuse_weight * inputs.base_color + sheet * (0.5f * (1.0f - g)) * inputs.subsurface_color) /
+                            max(diffuse_weight + sheet * (0.5f * (1.0f - g)), vec3(1e-12f));
+            diffuse_weight = diffuse_weight + sheet * (0.5f * (1.0f - g));
+            bsdf.diffuse_transmission = openpbr_diffuse_lobe_init(sheet * (0.5f * (1.0f + g)), inputs.subsurface_color,
+                                                                  inputs.base_diffuse_roughness, -1.0f, view);
+        }
+        if (translucent > 0.0f)
+        {
+            thin_transmission_weight = under_specular * (dielectric_weight * translucent) * inputs.transmission_color;
+            const float thin_compensation = 1.0f / max(base_lobe_albedo.albedo, 0.05f);
+            bsdf.thin_transmission =
+                openpbr_microfacet_reflection_lobe_init(thin_transmission_weight * thin_compensation, alpha, no_fresnel,
+                                                        OPENPBR_LOBE_ID_SPECULAR_TRANSMISSION, -1.0f, view);
+        }
     }
-    else
+    else if (entering > 0.0f)
     {
         // Refraction into the interior: translucent (tinted by transmission_color when there
         // is no medium, spec "Translucent base") and subsurface (the medium does the rest).
         const vec3 translucent_tint = inputs.transmission_depth > 0.0f ? vec3(1.0f) : inputs.transmission_color;
         transmission_weight = under_specular * dielectric_weight * (translucent * translucent_tint + vec3(subsurface));
+        // A delta lobe refracts exactly 1 - F: no compensation (the table near alpha = 0 smears
+        // the step at the critical angle when eta < 1 and gained up to 115 % there).
+        const float transmission_compensation =
+            openpbr_ggx_is_delta(alpha) ? 1.0f
+                                        : 1.0f / max(openpbr_dielectric_transmission_albedo(mu, table_alpha, eta_channels.y), 0.05f);
+        bsdf.transmission = openpbr_dielectric_lobe_init(zero, transmission_weight * transmission_compensation, alpha,
+                                                         eta_channels, false, OPENPBR_LOBE_ID_SPECULAR_TRANSMISSION, view);
     }
-    bsdf.specular = openpbr_microfacet_reflection_lobe_init(specular_compensation * dielectric_weight, alpha,
-                                                            dielectric_fresnel, OPENPBR_LOBE_ID_SPECULAR_REFLECTION, 1.0f, view);
-    bsdf.diffuse = openpbr_diffuse_lobe_init(diffuse_weight, diffuse_color, inputs.base_diffuse_roughness, 1.0f, view);
-    bsdf.diffuse_transmission = openpbr_diffuse_lobe_init(diffuse_transmission_weight, inputs.subsurface_color,
-                                                          inputs.base_diffuse_roughness, -1.0f, view);
-    const float transmission_compensation =
-        1.0f / max(openpbr_dielectric_transmission_albedo(mu, table_alpha, eta_channels.y), 0.05f);
-    bsdf.transmission = openpbr_dielectric_lobe_init(zero, transmission_weight * transmission_compensation, alpha,
-                                                     eta_channels, false, OPENPBR_LOBE_ID_SPECULAR_TRANSMISSION, view);
-    const float thin_compensation = 1.0f / max(base_lobe_albedo.albedo, 0.05f);
-    bsdf.thin_transmission = openpbr_microfacet_reflection_lobe_init(
-        thin_transmission_weight * thin_compensation, alpha, no_fresnel, OPENPBR_LOBE_ID_SPECULAR_TRANSMISSION, -1.0f, view);
+    if (max(diffuse_weight.x, max(diffuse_weight.y, diffuse_weight.z)) > 0.0f)
+    {
+        bsdf.diffuse = openpbr_diffuse_lobe_init(diffuse_weight, diffuse_color, inputs.base_diffuse_roughness, 1.0f, view);
+    }
 
     // Metal: F82-tint Fresnel, F0 = base_weight base_color, scaled by specular_weight.
-    const vec3 metal_f0 = inputs.base_weight * inputs.base_color;
-    const OpenPBR_Fresnel metal_fresnel = openpbr_add_thin_film(
-        openpbr_make_f82_fresnel(metal_f0, inputs.specular_color, vec3(min(inputs.specular_weight, 1.0f))), film_weight,
-        inputs.thin_film_thickness, inputs.thin_film_ior, film_outside_ior);
-    const vec3 metal_compensation = openpbr_multiple_scattering_compensation(metal_f0, base_lobe_albedo.albedo);
-    bsdf.metal = openpbr_microfacet_reflection_lobe_init(metal_compensation * metalness, alpha, metal_fresnel,
-                                                         OPENPBR_LOBE_ID_METAL, 1.0f, view);
-    const vec3 metal_albedo = openpbr_saturate(metal_compensation * openpbr_fresnel_evaluate(metal_fresnel, mu) *
-                                               (bsdf.metal.is_delta ? 1.0f : base_lobe_albedo.albedo)) *
-                              metalness;
+    vec3 metal_albedo = vec3(0.0f);
+    if (metalness > 0.0f)
+    {
+        const vec3 metal_f0 = inputs.base_weight * inputs.base_color;
+        const OpenPBR_Fresnel metal_fresnel = openpbr_add_thin_film(
+            openpbr_make_f82_fresnel(metal_f0, inputs.specular_color, vec3(min(inputs.specular_weight, 1.0f))), film_weight,
+            inputs.thin_film_thickness, inputs.thin_film_ior, film_outside_ior);
+        const vec3 metal_compensation = openpbr_multiple_scattering_compensation(metal_f0, base_lobe_albedo.albedo);
+        bsdf.metal = openpbr_microfacet_reflection_lobe_init(metal_compensation * metalness, alpha, metal_fresnel,
+                                                             OPENPBR_LOBE_ID_METAL, 1.0f, view);
+        metal_albedo = openpbr_saturate(metal_compensation * openpbr_fresnel_evaluate(metal_fresnel, mu) *
+                                        (bsdf.metal.is_delta ? 1.0f : base_lobe_albedo.albedo)) *
+                       metalness;
+    }
 
     // Albedo estimates of the base lobes (unit layering factor).
     const vec3 specular_estimate = specular_albedo * dielectric_weight;
@@ -469,18 +535,23 @@ OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare_lobes(OPENPBR_IN(OpenPBR_Resol
     // K = lerp(K_s, K_r, r_b); E_b the albedo of the whole base, its slabs blended by their mix
     // weights (spec: translucent and subsurface slabs included, so a white glass base under a
     // white coat is not darkened and passes the white furnace), taken at the view rather than
-    // only at normal incidence (a documented approximation).
-    const vec3 base_albedo =
-        openpbr_saturate(specular_estimate + diffuse_estimate + metal_albedo + diffuse_transmission_estimate +
-                         transmission_estimate + thin_transmission_estimate);
-    const float k_specular = openpbr_fresnel_dielectric(coat_mu, coat_ior);
-    const float k_rough = 1.0f - (1.0f - openpbr_average_fresnel(coat_ior)) * bsdf.coat_inverse_eta_squared;
-    const float specular_f0 = openpbr_dielectric_f0(eta_base);
-    const float base_surface_roughness =
-        mix(mix(1.0f, inputs.specular_roughness, min(specular_f0 * inputs.specular_weight, 1.0f)), inputs.specular_roughness, metalness);
-    const float k = mix(k_specular, k_rough, base_surface_roughness);
-    const vec3 delta = vec3(1.0f - k) / max(vec3(1.0f) - base_albedo * k, vec3(1e-6f));
-    const vec3 darkening = mix(vec3(1.0f), delta, coat_weight * inputs.coat_darkening);
+    // only at normal incidence (a documented approximation). No coat: no darkening.
+    vec3 darkening = vec3(1.0f);
+    if (coat_weight > 0.0f)
+    {
+        const vec3 base_albedo =
+            openpbr_saturate(specular_estimate + diffuse_estimate + metal_albedo + diffuse_transmission_estimate +
+                             transmission_estimate + thin_transmission_estimate);
+        const float k_specular = openpbr_fresnel_dielectric(coat_mu, coat_ior);
+        const float k_rough = 1.0f - (1.0f - openpbr_average_fresnel(coat_ior)) * bsdf.coat_inverse_eta_squared;
+        const float specular_f0 = openpbr_dielectric_f0(eta_base);
+        const float base_surface_roughness =
+            mix(mix(1.0f, inputs.specular_roughness, min(specular_f0 * inputs.specular_weight, 1.0f)), inputs.specular_roughness,
+                metalness);
+        const float k = mix(k_specular, k_rough, base_surface_roughness);
+        const vec3 delta = vec3(1.0f - k) / max(vec3(1.0f) - base_albedo * k, vec3(1e-6f));
+        darkening = mix(vec3(1.0f), delta, coat_weight * inputs.coat_darkening);
+    }
 
     // Layering factors on every base lobe: fuzz and opacity, coat absorption and darkening.
     bsdf.under_coat_constant = darkening * (under_fuzz * (1.0f - coat_weight));
@@ -491,7 +562,7 @@ OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare_lobes(OPENPBR_IN(OpenPBR_Resol
 
     // Selection probability proportional to each lobe's estimated albedo (luminance); the
     // probabilities only steer sampling, so estimates need not be exact.
-    const float fuzz_p = openpbr_luminance(openpbr_fuzz_lobe_albedo(bsdf.fuzz, bsdf.fuzz_view));
+    const float fuzz_p = fuzz_weight > 0.0f ? openpbr_luminance(openpbr_fuzz_lobe_albedo(bsdf.fuzz, bsdf.fuzz_view)) : 0.0f;
     const float coat_p = coat_weight > 0.0f ? under_fuzz * coat_weight * coat_albedo : 0.0f;
     const float specular_p = dielectric_weight > 0.0f ? openpbr_luminance(specular_estimate * under_reflected) : 0.0f;
     const float metal_p = metalness > 0.0f ? openpbr_luminance(metal_albedo * under_reflected) : 0.0f;
@@ -502,7 +573,9 @@ OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare_lobes(OPENPBR_IN(OpenPBR_Resol
     const float pass_through_p = 1.0f - opacity;
     const float total = fuzz_p + coat_p + specular_p + metal_p + diffuse_p + diffuse_transmission_p + transmission_p +
                         thin_transmission_p + pass_through_p;
-    const float inverse_total = total > 0.0f ? 1.0f / total : 0.0f;
+    // A denormal total (e.g. a metal of color 1e-40) would overflow 1 / total to infinity; below
+    // the smallest normal float nothing is sampled (GPUs flush such values to 0 anyway).
+    const float inverse_total = total >= OPENPBR_FLOAT_MIN_NORMAL ? 1.0f / total : 0.0f;
     bsdf.probability_fuzz = fuzz_p * inverse_total;
     bsdf.probability_coat = coat_p * inverse_total;
     bsdf.probability_specular = specular_p * inverse_total;
@@ -518,33 +591,54 @@ OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare_lobes(OPENPBR_IN(OpenPBR_Resol
 // Emission (spec "Emission"): emission_luminance x emission_color in nits, under the coat:
 // lerp(1, T_coat, C) with T_coat one pass through the coat towards the view; zero when seen
 // from inside a non-thin-walled object (the emitting surface faces outwards).
-OPENPBR_FUNC vec3 openpbr_prepare_emission(OPENPBR_IN(OpenPBR_ResolvedInputs) raw_inputs, vec3 view_world)
+// `inputs` have passed openpbr_prepare_inputs.
+OPENPBR_FUNC vec3 openpbr_prepare_emission_of(OPENPBR_IN(OpenPBR_ResolvedInputs) inputs, vec3 view_world)
 {
-    const OpenPBR_ResolvedInputs inputs = openpbr_apply_input_contract(raw_inputs);
+    if (!(inputs.emission_luminance > 0.0f))
+    {
+        return vec3(0.0f);
+    }
     const vec3 view = openpbr_safe_normalize(view_world, inputs.geometry_basis.normal);
     const float cos_base = dot(view, inputs.geometry_basis.normal);
     if (cos_base < 0.0f && !inputs.geometry_thin_walled)
     {
         return vec3(0.0f);
     }
-    const float coat_mu = min(abs(dot(view, inputs.geometry_coat_basis.normal)), 1.0f);
-    const vec3 half_log_color = 0.5f * log(max(inputs.coat_color, vec3(1e-6f)));
-    const vec3 coat_transmittance =
-        openpbr_coat_transmittance(half_log_color, 1.0f / (inputs.coat_ior * inputs.coat_ior), coat_mu);
-    const vec3 attenuation = mix(vec3(1.0f), coat_transmittance, inputs.coat_weight);
+    vec3 attenuation = vec3(1.0f);
+    if (inputs.coat_weight > 0.0f)
+    {
+        const float coat_mu = min(abs(dot(view, inputs.geometry_coat_basis.normal)), 1.0f);
+        const vec3 half_log_color = 0.5f * log(max(inputs.coat_color, vec3(1e-6f)));
+        const vec3 coat_transmittance =
+            openpbr_coat_transmittance(half_log_color, 1.0f / (inputs.coat_ior * inputs.coat_ior), coat_mu);
+        attenuation = mix(vec3(1.0f), coat_transmittance, inputs.coat_weight);
+    }
     return inputs.emission_color * inputs.emission_luminance * attenuation * inputs.geometry_opacity;
+}
+
+OPENPBR_FUNC vec3 openpbr_prepare_emission(OPENPBR_IN(OpenPBR_ResolvedInputs) raw_inputs, vec3 view_world)
+{
+    return openpbr_prepare_emission_of(openpbr_prepare_inputs(raw_inputs), view_world);
+}
+
+OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare_lobes(OPENPBR_IN(OpenPBR_ResolvedInputs) raw_inputs, vec3 view_world,
+                                                        vec3 rgb_wavelengths_nm)
+{
+    return openpbr_prepare_lobes_of(openpbr_prepare_inputs(raw_inputs), view_world, rgb_wavelengths_nm);
 }
 
 OPENPBR_FUNC OpenPBR_HomogeneousVolume openpbr_prepare_volume(OPENPBR_IN(OpenPBR_ResolvedInputs) raw_inputs)
 {
-    return openpbr_make_volume(openpbr_apply_input_contract(raw_inputs));
+    return openpbr_make_volume(openpbr_prepare_inputs(raw_inputs));
 }
 
 OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare(OPENPBR_IN(OpenPBR_ResolvedInputs) inputs, vec3 view_world,
                                                   vec3 rgb_wavelengths_nm)
 {
-    OpenPBR_PreparedBsdf bsdf = openpbr_prepare_lobes(inputs, view_world, rgb_wavelengths_nm);
-    bsdf.emission = openpbr_prepare_emission(inputs, view_world);
+    // The input contract and the toggles run once, for the lobes and the emission.
+    const OpenPBR_ResolvedInputs prepared_inputs = openpbr_prepare_inputs(inputs);
+    OpenPBR_PreparedBsdf bsdf = openpbr_prepare_lobes_of(prepared_inputs, view_world, rgb_wavelengths_nm);
+    bsdf.emission = openpbr_prepare_emission_of(prepared_inputs, view_world);
     return bsdf;
 }
 
@@ -560,7 +654,9 @@ OPENPBR_FUNC OpenPBR_DiffuseSpecular openpbr_eval(OPENPBR_IN(OpenPBR_PreparedBsd
     value.diffuse = vec3(0.0f);
     value.specular = vec3(0.0f);
     const vec3 light = openpbr_to_local(bsdf.basis, light_world);
-    if (bsdf.inside)
+    // Each lobe test starts with its feature toggle: a constant in a specialized build, where
+    // the lobe's code then disappears from eval (the probabilities are only known at run time).
+    if ((OPENPBR_FEATURE_TRANSMISSION || OPENPBR_FEATURE_SUBSURFACE) && bsdf.inside)
     {
         if (bsdf.probability_transmission > 0.0f)
         {
@@ -568,14 +664,14 @@ OPENPBR_FUNC OpenPBR_DiffuseSpecular openpbr_eval(OPENPBR_IN(OpenPBR_PreparedBsd
         }
         return value;
     }
-    if (bsdf.probability_fuzz > 0.0f)
+    if (OPENPBR_FEATURE_FUZZ && bsdf.probability_fuzz > 0.0f)
     {
         value.specular = openpbr_fuzz_lobe_eval(bsdf.fuzz, bsdf.fuzz_view, openpbr_to_local(bsdf.fuzz_basis, light_world));
     }
-    const vec3 coat_light = openpbr_to_local(bsdf.coat_basis, light_world);
-    if (bsdf.probability_coat > 0.0f)
+    if (OPENPBR_FEATURE_COAT && bsdf.probability_coat > 0.0f)
     {
-        value.specular = value.specular + openpbr_microfacet_reflection_lobe_eval(bsdf.coat, bsdf.coat_view, coat_light);
+        value.specular = value.specular + openpbr_microfacet_reflection_lobe_eval(bsdf.coat, bsdf.coat_view,
+                                                                                  openpbr_to_local(bsdf.coat_basis, light_world));
     }
     vec3 diffuse = vec3(0.0f);
     vec3 specular = vec3(0.0f);
@@ -585,7 +681,7 @@ OPENPBR_FUNC OpenPBR_DiffuseSpecular openpbr_eval(OPENPBR_IN(OpenPBR_PreparedBsd
         {
             specular = specular + openpbr_microfacet_reflection_lobe_eval(bsdf.specular, bsdf.view, light);
         }
-        if (bsdf.probability_metal > 0.0f)
+        if (OPENPBR_FEATURE_METAL && bsdf.probability_metal > 0.0f)
         {
             specular = specular + openpbr_microfacet_reflection_lobe_eval(bsdf.metal, bsdf.view, light);
         }
@@ -593,22 +689,28 @@ OPENPBR_FUNC OpenPBR_DiffuseSpecular openpbr_eval(OPENPBR_IN(OpenPBR_PreparedBsd
         {
             diffuse = openpbr_diffuse_lobe_eval(bsdf.diffuse, bsdf.view, light);
         }
-        const vec3 coat_light_transmittance =
-            openpbr_coat_transmittance(bsdf.coat_half_log_color, bsdf.coat_inverse_eta_squared, max(coat_light.z, 0.0f));
-        const vec3 factor = bsdf.under_coat_constant + bsdf.under_coat_absorbing * coat_light_transmittance;
+        // The coat's absorption towards the light: its exp only where the coat absorbs.
+        vec3 factor = bsdf.under_coat_transmitted;
+        if (OPENPBR_FEATURE_COAT && bsdf.coat_absorbs)
+        {
+            const float coat_mu = max(dot(light_world, bsdf.coat_basis.normal), 0.0f);
+            factor = bsdf.under_coat_constant +
+                     bsdf.under_coat_absorbing *
+                         openpbr_coat_transmittance(bsdf.coat_half_log_color, bsdf.coat_inverse_eta_squared, coat_mu);
+        }
         value.diffuse = diffuse * factor;
         value.specular = value.specular + specular * factor;
         return value;
     }
-    if (bsdf.probability_transmission > 0.0f)
+    if ((OPENPBR_FEATURE_TRANSMISSION || OPENPBR_FEATURE_SUBSURFACE) && bsdf.probability_transmission > 0.0f)
     {
         specular = openpbr_dielectric_lobe_eval(bsdf.transmission, bsdf.view, light);
     }
-    if (bsdf.probability_thin_transmission > 0.0f)
+    if (OPENPBR_FEATURE_THIN_WALLED && OPENPBR_FEATURE_TRANSMISSION && bsdf.probability_thin_transmission > 0.0f)
     {
         specular = specular + openpbr_microfacet_reflection_lobe_eval(bsdf.thin_transmission, bsdf.view, light);
     }
-    if (bsdf.probability_diffuse_transmission > 0.0f)
+    if (OPENPBR_FEATURE_THIN_WALLED && OPENPBR_FEATURE_SUBSURFACE && bsdf.probability_diffuse_transmission > 0.0f)
     {
         diffuse = openpbr_diffuse_lobe_eval(bsdf.diffuse_transmission, bsdf.view, light);
     }
@@ -621,7 +723,7 @@ OPENPBR_FUNC float openpbr_pdf(OPENPBR_IN(OpenPBR_PreparedBsdf) bsdf, vec3 light
 {
     const vec3 light = openpbr_to_local(bsdf.basis, light_world);
     float pdf = 0.0f;
-    if (bsdf.probability_transmission > 0.0f)
+    if ((OPENPBR_FEATURE_TRANSMISSION || OPENPBR_FEATURE_SUBSURFACE) && bsdf.probability_transmission > 0.0f)
     {
         pdf += bsdf.probability_transmission * openpbr_dielectric_lobe_pdf(bsdf.transmission, bsdf.view, light);
     }
@@ -629,12 +731,12 @@ OPENPBR_FUNC float openpbr_pdf(OPENPBR_IN(OpenPBR_PreparedBsdf) bsdf, vec3 light
     {
         return pdf;
     }
-    if (bsdf.probability_fuzz > 0.0f)
+    if (OPENPBR_FEATURE_FUZZ && bsdf.probability_fuzz > 0.0f)
     {
         pdf += bsdf.probability_fuzz *
                openpbr_fuzz_lobe_pdf(bsdf.fuzz, bsdf.fuzz_view, openpbr_to_local(bsdf.fuzz_basis, light_world));
     }
-    if (bsdf.probability_coat > 0.0f)
+    if (OPENPBR_FEATURE_COAT && bsdf.probability_coat > 0.0f)
     {
         pdf += bsdf.probability_coat * openpbr_microfacet_reflection_lobe_pdf(bsdf.coat, bsdf.coat_view,
                                                                               openpbr_to_local(bsdf.coat_basis, light_world));
@@ -643,7 +745,7 @@ OPENPBR_FUNC float openpbr_pdf(OPENPBR_IN(OpenPBR_PreparedBsdf) bsdf, vec3 light
     {
         pdf += bsdf.probability_specular * openpbr_microfacet_reflection_lobe_pdf(bsdf.specular, bsdf.view, light);
     }
-    if (bsdf.probability_metal > 0.0f)
+    if (OPENPBR_FEATURE_METAL && bsdf.probability_metal > 0.0f)
     {
         pdf += bsdf.probability_metal * openpbr_microfacet_reflection_lobe_pdf(bsdf.metal, bsdf.view, light);
     }
@@ -651,11 +753,11 @@ OPENPBR_FUNC float openpbr_pdf(OPENPBR_IN(OpenPBR_PreparedBsdf) bsdf, vec3 light
     {
         pdf += bsdf.probability_diffuse * openpbr_diffuse_lobe_pdf(bsdf.diffuse, bsdf.view, light);
     }
-    if (bsdf.probability_diffuse_transmission > 0.0f)
+    if (OPENPBR_FEATURE_THIN_WALLED && OPENPBR_FEATURE_SUBSURFACE && bsdf.probability_diffuse_transmission > 0.0f)
     {
         pdf += bsdf.probability_diffuse_transmission * openpbr_diffuse_lobe_pdf(bsdf.diffuse_transmission, bsdf.view, light);
     }
-    if (bsdf.probability_thin_transmission > 0.0f)
+    if (OPENPBR_FEATURE_THIN_WALLED && OPENPBR_FEATURE_TRANSMISSION && bsdf.probability_thin_transmission > 0.0f)
     {
         pdf += bsdf.probability_thin_transmission *
                openpbr_microfacet_reflection_lobe_pdf(bsdf.thin_transmission, bsdf.view, light);
@@ -737,7 +839,9 @@ OPENPBR_FUNC OpenPBR_BsdfSample openpbr_sample(OPENPBR_IN(OpenPBR_PreparedBsdf) 
         probability = bsdf.probability_pass_through;
         delta_factor = vec3(1.0f);
     }
-    if (lobe_sample.lobe_type == OPENPBR_LOBE_TYPE_NONE || !(probability > 0.0f))
+    // A selection probability below the smallest normal float (e.g. 1e-40 with u.z = 0) would
+    // overflow the estimator 1 / probability: no sample, as for probability 0.
+    if (lobe_sample.lobe_type == OPENPBR_LOBE_TYPE_NONE || !(probability >= OPENPBR_FLOAT_MIN_NORMAL))
     {
         return openpbr_make_no_sample();
     }
@@ -749,7 +853,8 @@ OPENPBR_FUNC OpenPBR_BsdfSample openpbr_sample(OPENPBR_IN(OpenPBR_PreparedBsdf) 
         // Delta lobe: the estimator is value / P(selecting the lobe). A reflecting delta under
         // the coat sees the coat's absorption along the mirrored direction.
         vec3 factor = delta_factor;
-        if (!bsdf.inside && (lobe_sample.lobe_type & OPENPBR_LOBE_TYPE_REFLECTION) != 0u &&
+        if (OPENPBR_FEATURE_COAT && bsdf.coat_absorbs && !bsdf.inside &&
+            (lobe_sample.lobe_type & OPENPBR_LOBE_TYPE_REFLECTION) != 0u &&
             (lobe_sample.lobe_type >> OPENPBR_LOBE_ID_SHIFT) != OPENPBR_LOBE_ID_COAT)
         {
             const float coat_mu = max(dot(bsdf_sample.direction, bsdf.coat_basis.normal), 0.0f);
@@ -765,7 +870,7 @@ OPENPBR_FUNC OpenPBR_BsdfSample openpbr_sample(OPENPBR_IN(OpenPBR_PreparedBsdf) 
     // One-sample MIS over the continuous lobes: weight = f(wi) / sum_j P_j pdf_j(wi), so the
     // weight equals eval / pdf at the returned direction by construction.
     const float pdf = openpbr_pdf(bsdf, bsdf_sample.direction);
-    if (!(pdf > 0.0f) || !(pdf <= OPENPBR_FLOAT_MAX))
+    if (!(pdf >= OPENPBR_FLOAT_MIN_NORMAL) || !(pdf <= OPENPBR_FLOAT_MAX))
     {
         return openpbr_make_no_sample();
     }

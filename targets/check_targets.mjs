@@ -112,6 +112,11 @@ function checkMetal(file, entry, sources) {
     for (const m of codeOnly(fs.readFileSync(source, 'utf8')).matchAll(/\[\s*vk::constant_id\s*\(\s*(\d+)\s*\)\s*\]/g)) {
       wanted.add(Number(m[1]));
     }
+    // The feature toggles declare theirs through a macro, with the ids defined as
+    // OPENPBR_SPECIALIZATION_ID_<name> (slang/openpbr_features.h).
+    for (const m of codeOnly(fs.readFileSync(source, 'utf8')).matchAll(/#\s*define\s+OPENPBR_SPECIALIZATION_ID_\w+\s+(\d+)/g)) {
+      wanted.add(Number(m[1]));
+    }
   }
   const found = [...code.matchAll(/\[\[\s*function_constant\s*\(\s*(\d+)\s*\)\s*\]\]/g)].map((m) => Number(m[1]));
   const counts = new Map();

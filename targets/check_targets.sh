@@ -88,9 +88,9 @@ case "${1:-}" in
     ;;
   metal)
     run "metal conformance.slang.metal" "$NODE" "$SRC/targets/check_targets.mjs" metal "$OUT/metal/conformance.slang.metal" \
-      conformance_main "$SRC/targets/kernels/conformance.slang"
+      conformance_main "$SRC/targets/kernels/conformance.slang" "$SRC/slang/openpbr_features.h"
     run "metal shade_batch.metal" "$NODE" "$SRC/targets/check_targets.mjs" metal "$OUT/metal/shade_batch.metal" \
-      shade_batch "$SRC/examples/shade_batch.slang"
+      shade_batch "$SRC/examples/shade_batch.slang" "$SRC/slang/openpbr_features.h"
     ;;
   cuda_nvcc)
     [ -x "${OPENPBR_NVCC:-}" ] || skip "nvcc not found (${OPENPBR_NVCC:-unset})"

@@ -140,8 +140,8 @@ TEST(Targets, ExampleShadeBatchMatchesCpu)
         description.spirv_words = load_spirv_file(std::string(OPENPBR_TARGETS_DIR) + "/spirv/shade_batch.spv");
         description.bindings = {{0, false}, {1, false}, {2, false}, {3, false}, {4, false}};
         description.push_constant_size = 4;
-        description.specialization_constants = {SpecializationConstant::of_bool(0, true),
-                                                SpecializationConstant::of_bool(1, sample)};
+        description.specialization_constants = {SpecializationConstant::of_bool(16, true),
+                                                SpecializationConstant::of_bool(17, sample)};
         ComputePipeline pipeline(*context, description);
         std::vector<std::byte> lut = to_bytes(shipped_lut());
         std::vector<std::byte> fuzz = to_bytes(shipped_fuzz_ltc());

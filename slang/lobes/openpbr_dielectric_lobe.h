@@ -21,6 +21,10 @@
 #include "../math/openpbr_fresnel.h"
 #include "../math/openpbr_vndf.h"
 
+// Smallest view cosine the rough lobe scatters at, e.g. 1e-18: GGX Lambda squares the cosine,
+// which must stay a normal float (1e-18^2 = 1e-36 > 1.2e-38).
+#define OPENPBR_MIN_VIEW_COSINE 1e-18f
+
 OPENPBR_NAMESPACE_BEGIN
 
 struct OpenPBR_DielectricLobe
@@ -66,12 +70,17 @@ OPENPBR_FUNC float openpbr_dielectric_transmission_probability(OPENPBR_IN(OpenPB
 OPENPBR_FUNC vec2 openpbr_dielectric_lobe_channel(OPENPBR_IN(OpenPBR_DielectricLobe) lobe, vec3 view, vec3 light,
                                                   float eta)
 {
-    if (lobe.is_delta || view.z <= 0.0f || light.z == 0.0f)
+    // Below OPENPBR_MIN_VIEW_COSINE the visible microfacet area G1(o) o.n is under float
+    // resolution (and Lambda's z^2 would be denormal): nothing scatters.
+    if (lobe.is_delta || !(view.z >= OPENPBR_MIN_VIEW_COSINE) || light.z == 0.0f)
     {
         return vec2(0.0f);
     }
     const float lambda_light = openpbr_ggx_lambda(light, lobe.alpha);
-    const float g2 = openpbr_ggx_g2(lobe.lambda_view, lambda_light);
+    // G2 / G1(o) and G1(o) / o.n are formed separately: both stay bounded at grazing view
+    // (G1(o) / o.n -> 2 / alpha), while D / o.n alone overflows for o.n near 1e-38.
+    const float g2_over_g1 = (1.0f + lobe.lambda_view) / (1.0f + lobe.lambda_view + lambda_light);
+    const float g1_over_cos_view = lobe.g1_view / view.z;
     if (light.z > 0.0f)
     {
         if (!lobe.with_fresnel)
@@ -81,8 +90,8 @@ OPENPBR_FUNC vec2 openpbr_dielectric_lobe_channel(OPENPBR_IN(OpenPBR_DielectricL
         const vec3 h = openpbr_safe_normalize(view + light, vec3(0.0f, 0.0f, 1.0f));
         const float d = openpbr_ggx_d(h, lobe.alpha);
         const float f = openpbr_fresnel_dielectric(dot(view, h), eta);
-        const float inverse_4_cos_view = 0.25f / view.z;
-        return vec2(f * d * g2 * inverse_4_cos_view, f * lobe.g1_view * d * inverse_4_cos_view);
+        const float pdf = f * d * (0.25f * g1_over_cos_view);
+        return vec2(pdf * g2_over_g1, pdf);
     }
     // Transmission: generalized half vector, oriented to the upper hemisphere.
     vec3 h = view + light * eta;
@@ -97,14 +106,16 @@ OPENPBR_FUNC vec2 openpbr_dielectric_lobe_channel(OPENPBR_IN(OpenPBR_DielectricL
     const float d = openpbr_ggx_d(h, lobe.alpha);
     const float f = lobe.with_fresnel ? openpbr_fresnel_dielectric(o_dot_h, eta) : 0.0f;
     const float denominator = openpbr_square(eta * i_dot_h + o_dot_h);
-    if (!(denominator > 0.0f))
+    // The denominator vanishes only at the straight-through direction of eta -> 1, where the
+    // BTDF tends to a delta; below 1e-20 the Jacobian (<= 9e20) would overflow the products.
+    if (!(denominator >= 1e-20f))
     {
         return vec2(0.0f);
     }
     const float jacobian = eta * eta * abs(i_dot_h) / denominator;
-    const float visible = o_dot_h * d / view.z;
-    const float value = (1.0f - f) * g2 * visible * jacobian;
-    const float pdf = openpbr_dielectric_transmission_probability(lobe, f) * lobe.g1_view * visible * jacobian;
+    const float visible = (o_dot_h * d) * g1_over_cos_view * jacobian;
+    const float value = (1.0f - f) * g2_over_g1 * visible;
+    const float pdf = openpbr_dielectric_transmission_probability(lobe, f) * visible;
     return vec2(value, pdf);
 }
 
@@ -137,7 +148,7 @@ OPENPBR_FUNC float openpbr_dielectric_lobe_pdf(OPENPBR_IN(OpenPBR_DielectricLobe
 OPENPBR_FUNC OpenPBR_LobeSample openpbr_dielectric_lobe_sample(OPENPBR_IN(OpenPBR_DielectricLobe) lobe, vec3 view,
                                                                vec2 u, float selector)
 {
-    if (view.z <= 0.0f)
+    if (!(view.z >= OPENPBR_MIN_VIEW_COSINE))
     {
         return openpbr_make_no_lobe_sample();
     }
@@ -149,7 +160,7 @@ OPENPBR_FUNC OpenPBR_LobeSample openpbr_dielectric_lobe_sample(OPENPBR_IN(OpenPB
         choice = choice * 3.0f - float(channel);
     }
     const float eta = channel == 0 ? lobe.eta.x : (channel == 1 ? lobe.eta.y : lobe.eta.z);
-    const vec3 h = lobe.is_delta ? vec3(0.0f, 0.0f, 1.0f) : openpbr_sample_vndf_spherical_cap(view, lobe.alpha, u);
+    const vec3 h = lobe.is_delta ? vec3(0.0f, 0.0f, 1.0f) : openpbr_sample_vndf_full(view, lobe.alpha, u);
     const float o_dot_h = dot(view, h);
     const float f = lobe.with_fresnel ? openpbr_fresnel_dielectric(o_dot_h, eta) : 0.0f;
     const bool reflects = choice >= openpbr_dielectric_transmission_probability(lobe, f);

@@ -66,27 +66,32 @@ OPENPBR_FUNC vec3 openpbr_diffuse_lobe_eval(OPENPBR_IN(OpenPBR_DiffuseLobe) lobe
 {
     // Mirror the light into the lobe's hemisphere so one formula serves both sides.
     const vec3 l = vec3(light.x, light.y, light.z * lobe.hemisphere_sign);
-    if (l.z <= 0.0f)
+    // Written so that a NaN light (no direction) also returns 0.
+    if (!(l.z > 0.0f))
     {
         return vec3(0.0f);
     }
     const float mu_o = abs(view.z);
     const float mu_i = l.z;
-    vec3 value = lobe.single_scatter_a;
+    vec3 value = lobe.single_scatter_a * mu_i;
     if (lobe.sigma > 0.0f)
     {
+        // (s / t) mu_i is formed as s (mu_i / t): s / t alone overflows when view and light
+        // are both grazing (mu 1e-40, s ~ 1), while mu_i / max(mu_i, mu_o) stays in [0, 1].
         const float s = dot(l, vec3(view.x, view.y, mu_o)) - mu_i * mu_o;
-        const float s_over_t = s > 0.0f ? s / max(mu_i, mu_o) : s;
-        value = value + lobe.single_scatter_b * s_over_t +
-                lobe.multiple_scatter * max(1.0f - openpbr_eon_fon_albedo(mu_i, lobe.sigma), 0.0f);
+        const float s_over_t_cos = s > 0.0f ? s * (mu_i / max(mu_i, mu_o)) : s * mu_i;
+        value = value + lobe.single_scatter_b * s_over_t_cos +
+                lobe.multiple_scatter * (max(1.0f - openpbr_eon_fon_albedo(mu_i, lobe.sigma), 0.0f) * mu_i);
     }
-    return max(value, vec3(0.0f)) * mu_i;
+    return max(value, vec3(0.0f));
 }
 
 OPENPBR_FUNC float openpbr_diffuse_lobe_pdf(OPENPBR_IN(OpenPBR_DiffuseLobe) lobe, vec3 view, vec3 light)
 {
     OPENPBR_UNUSED(view);
-    return openpbr_cosine_hemisphere_pdf(light.z * lobe.hemisphere_sign);
+    // 0 for a NaN light as in eval (max(NaN, 0) is NaN on some targets).
+    const float cos_theta = light.z * lobe.hemisphere_sign;
+    return cos_theta > 0.0f ? openpbr_cosine_hemisphere_pdf(cos_theta) : 0.0f;
 }
 
 OPENPBR_FUNC OpenPBR_LobeSample openpbr_diffuse_lobe_sample(OPENPBR_IN(OpenPBR_DiffuseLobe) lobe, vec3 view, vec2 u)

@@ -213,6 +213,20 @@ OPENPBR_FUNC OpenPBR_FuzzLobe openpbr_fuzz_lobe_init(vec3 weight, vec3 color, fl
     return lobe;
 }
 
+// A lobe of weight 0 that prepare leaves where there is no fuzz (never evaluated: its
+// selection probability is 0); constants only, so it costs no table read.
+OPENPBR_FUNC OpenPBR_FuzzLobe openpbr_fuzz_lobe_empty()
+{
+    OpenPBR_FuzzLobe lobe;
+    lobe.weight = vec3(0.0f);
+    lobe.ltc_a = 1.0f;
+    lobe.ltc_b = 0.0f;
+    lobe.cos_phi_view = 1.0f;
+    lobe.sin_phi_view = 0.0f;
+    lobe.is_active = false;
+    return lobe;
+}
+
 // A direction of the shading frame expressed in the lobe frame (rotation about z by -phi_view).
 OPENPBR_FUNC vec3 openpbr_fuzz_to_lobe_frame(OPENPBR_IN(OpenPBR_FuzzLobe) lobe, vec3 w)
 {

@@ -47,6 +47,23 @@ OPENPBR_FUNC OpenPBR_MicrofacetReflectionLobe openpbr_microfacet_reflection_lobe
     return lobe;
 }
 
+// A lobe of weight 0 that prepare leaves in place of an absent one (never evaluated: its
+// selection probability is 0); constants only, so setting it up costs nothing.
+OPENPBR_FUNC OpenPBR_MicrofacetReflectionLobe openpbr_microfacet_reflection_lobe_empty(uint lobe_id)
+{
+    OpenPBR_MicrofacetReflectionLobe lobe;
+    lobe.weight = vec3(0.0f);
+    lobe.alpha = vec2(1.0f);
+    lobe.is_delta = false;
+    lobe.lambda_view = 0.0f;
+    lobe.g1_view = 1.0f;
+    lobe.inverse_4_cos_view = 0.25f;
+    lobe.fresnel = openpbr_make_constant_fresnel(vec3(0.0f));
+    lobe.lobe_id = lobe_id;
+    lobe.hemisphere_sign = 1.0f;
+    return lobe;
+}
+
 OPENPBR_FUNC vec3 openpbr_microfacet_reflection_lobe_eval(OPENPBR_IN(OpenPBR_MicrofacetReflectionLobe) lobe,
                                                           vec3 view, vec3 light_direction)
 {
@@ -71,7 +88,8 @@ OPENPBR_FUNC float openpbr_microfacet_reflection_lobe_pdf(OPENPBR_IN(OpenPBR_Mic
         return 0.0f;
     }
     const vec3 h = openpbr_safe_normalize(view + light, vec3(0.0f, 0.0f, 1.0f));
-    return lobe.g1_view * openpbr_ggx_d(h, lobe.alpha) * lobe.inverse_4_cos_view;
+    // The sampler's density (OPENPBR_VNDF_METHOD, slang/math/openpbr_vndf.h).
+    return openpbr_vndf_reflection_pdf(view, h, lobe.alpha, lobe.g1_view, lobe.inverse_4_cos_view);
 }
 
 OPENPBR_FUNC OpenPBR_LobeSample openpbr_microfacet_reflection_lobe_sample(
@@ -90,7 +108,7 @@ OPENPBR_FUNC OpenPBR_LobeSample openpbr_microfacet_reflection_lobe_sample(
         mirror.delta_weight = lobe.weight * openpbr_fresnel_evaluate(lobe.fresnel, view.z);
         return mirror;
     }
-    const vec3 h = openpbr_sample_vndf_spherical_cap(view, lobe.alpha, u);
+    const vec3 h = openpbr_sample_vndf_reflection(view, lobe.alpha, u);
     const vec3 light = reflect(-view, h);
     if (light.z <= 0.0f)
     {

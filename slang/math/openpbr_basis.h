@@ -43,9 +43,15 @@ OPENPBR_FUNC OpenPBR_Basis openpbr_make_basis(vec3 normal, vec3 tangent, float h
     {
         return fallback;
     }
+    // Gram-Schmidt twice ("twice is enough", Giraud et al. 2005, Numer. Math. 101): for a tangent
+    // nearly parallel to the normal the first projection keeps a rounding error of ~1e-7 |tangent|
+    // along n, which its normalization magnifies (a tangent 1.5e-5 rad off the normal gave a
+    // frame whose to_world output had length 0.99); the second pass removes it.
+    const vec3 t_first = t_orthogonal * inversesqrt(length_squared);
+    const vec3 t_second = t_first - n * dot(n, t_first);
     OpenPBR_Basis basis;
     basis.normal = n;
-    basis.tangent = t_orthogonal * inversesqrt(length_squared);
+    basis.tangent = openpbr_safe_normalize(t_second, fallback.tangent);
     basis.bitangent = cross(n, basis.tangent) * (handedness < 0.0f ? -1.0f : 1.0f);
     return basis;
 }

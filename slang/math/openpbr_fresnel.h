@@ -4,6 +4,7 @@
 
 #include "openpbr_math.h"
 #include "openpbr_thin_film.h"
+#include "../openpbr_features.h"
 
 OPENPBR_NAMESPACE_BEGIN
 
@@ -161,14 +162,16 @@ OPENPBR_FUNC vec3 openpbr_fresnel_evaluate(OPENPBR_IN(OpenPBR_Fresnel) fresnel, 
     const vec3 plain = fresnel.kind == OPENPBR_FRESNEL_F82
                            ? openpbr_fresnel_f82(fresnel.f0, fresnel.f82_coefficient, cos_theta)
                            : vec3(openpbr_fresnel_dielectric(cos_theta, fresnel.eta));
-    if (!(fresnel.film_weight > 0.0f))
+    // OPENPBR_FEATURE_THIN_FILM (slang/openpbr_features.h): with the toggle a constant 0 the
+    // film code below is compiled out of every lobe that reads a Fresnel factor.
+    if (!(OPENPBR_FEATURE_THIN_FILM && fresnel.film_weight > 0.0f))
     {
         return fresnel.tint * plain;
     }
     const vec3 film = fresnel.kind == OPENPBR_FRESNEL_F82
-                          ? openpbr_thin_film_fresnel_conductor(cos_theta, fresnel.outside_ior, fresnel.film_ior,
+                          ? openpbr_thin_film_fresnel_conductor_model(cos_theta, fresnel.outside_ior, fresnel.film_ior,
                                                                 fresnel.base_n, fresnel.base_k, fresnel.film_thickness_um)
-                          : openpbr_thin_film_fresnel_dielectric(cos_theta, fresnel.outside_ior, fresnel.film_ior,
+                          : openpbr_thin_film_fresnel_dielectric_model(cos_theta, fresnel.outside_ior, fresnel.film_ior,
                                                                  fresnel.base_ior, fresnel.film_thickness_um);
     return fresnel.tint * mix(plain, film, fresnel.film_weight);
 }

@@ -46,7 +46,7 @@ OPENPBR_FUNC float openpbr_ggx_lambda(vec3 w, vec2 alpha)
     const float z2 = w.z * w.z;
     const float a2 = openpbr_square(alpha.x * w.x) + openpbr_square(alpha.y * w.y);
     // a2 / z2 overflows to inf for z -> 0; sqrt(inf) = inf and Lambda = inf, G1 = 0, as it should.
-    return 0.5f * (sqrt(1.0f + a2 / max(z2, OPENPBR_FLOAT_MIN_NORMAL)) - 1.0f);
+    return 0.5f * (openpbr_sqrt(1.0f + a2 / max(z2, OPENPBR_FLOAT_MIN_NORMAL)) - 1.0f);
 }
 
 OPENPBR_FUNC float openpbr_ggx_g1(vec3 w, vec2 alpha) { return 1.0f / (1.0f + openpbr_ggx_lambda(w, alpha)); }

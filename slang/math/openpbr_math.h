@@ -10,9 +10,64 @@
 // Smallest positive normal float: results below it are flushed by lavapipe and many GPUs,
 // so no decision may depend on a denormal.
 #define OPENPBR_FLOAT_MIN_NORMAL 1.17549435e-38f
-#define OPENPBR_FLOAT_MAX 3.40282347e+38f
+// Just below the largest float (3.40282347e+38): Slang reads literals in double precision and
+// turned 3.40282347e+38f (above FLT_MAX as a double) into infinity, which broke every range
+// check against it on the Slang paths (stability corpus, rotation (1, inf) -> NaN).
+#define OPENPBR_FLOAT_MAX 3.4e+38f
+
+// Fast-math hooks, each off (0) by default; e.g. -DOPENPBR_FAST_RCP_SQRT=1. They trade a
+// bounded relative error for speed in the hot helpers every lobe calls (openpbr_rsqrt,
+// openpbr_sqrt, openpbr_normalize, openpbr_safe_normalize, openpbr_safe_sqrt):
+//   OPENPBR_FAST_RCP_SQRT  1/sqrt(x): in C++ the bit-level initial guess of Lomont 2003 ("Fast
+//                          Inverse Square Root") with one Newton step, relative error <= 1.8e-3;
+//                          on GPUs inversesqrt is already the native approximate instruction,
+//                          so the hook changes nothing there.
+//   OPENPBR_FAST_SQRT      sqrt(x) as x * openpbr_rsqrt(x) (0 stays 0).
+//   OPENPBR_FAST_NORMALIZE normalize(v) as v * openpbr_rsqrt(dot(v, v)).
+// docs/accuracy-vs-time.md has the measured error and time of each.
+#ifndef OPENPBR_FAST_RCP_SQRT
+#define OPENPBR_FAST_RCP_SQRT 0
+#endif
+#ifndef OPENPBR_FAST_SQRT
+#define OPENPBR_FAST_SQRT 0
+#endif
+#ifndef OPENPBR_FAST_NORMALIZE
+#define OPENPBR_FAST_NORMALIZE 0
+#endif
 
 OPENPBR_NAMESPACE_BEGIN
+
+// 1 / sqrt(x) for x > 0 (OPENPBR_FAST_RCP_SQRT).
+OPENPBR_FUNC float openpbr_rsqrt(float x)
+{
+#if OPENPBR_FAST_RCP_SQRT && defined(OPENPBR_LANGUAGE_TARGET_CPP)
+    const float guess = uintBitsToFloat(0x5f375a86u - (floatBitsToUint(x) >> 1u));
+    return guess * (1.5f - 0.5f * x * guess * guess);
+#else
+    return inversesqrt(x);
+#endif
+}
+
+// sqrt(x) for x >= 0 (OPENPBR_FAST_SQRT).
+OPENPBR_FUNC float openpbr_sqrt(float x)
+{
+#if OPENPBR_FAST_SQRT
+    // Infinity passes through (x * rsqrt(x) would be inf * 0); NaN and negatives give 0.
+    return x > 0.0f ? (x <= OPENPBR_FLOAT_MAX ? x * openpbr_rsqrt(x) : x) : 0.0f;
+#else
+    return sqrt(x);
+#endif
+}
+
+// v / |v| for a non-zero v (OPENPBR_FAST_NORMALIZE).
+OPENPBR_FUNC vec3 openpbr_normalize(vec3 v)
+{
+#if OPENPBR_FAST_NORMALIZE
+    return v * openpbr_rsqrt(dot(v, v));
+#else
+    return normalize(v);
+#endif
+}
 
 OPENPBR_FUNC float openpbr_square(float x) { return x * x; }
 OPENPBR_FUNC vec3 openpbr_square(vec3 x) { return x * x; }
@@ -22,7 +77,7 @@ OPENPBR_FUNC float openpbr_max3(vec3 v) { return max(v.x, max(v.y, v.z)); }
 OPENPBR_FUNC float openpbr_average(vec3 v) { return (v.x + v.y + v.z) * (1.0f / 3.0f); }
 
 // sqrt that never sees a negative argument produced by rounding.
-OPENPBR_FUNC float openpbr_safe_sqrt(float x) { return sqrt(max(x, 0.0f)); }
+OPENPBR_FUNC float openpbr_safe_sqrt(float x) { return openpbr_sqrt(max(x, 0.0f)); }
 
 // Replaces NaN and infinities by `fallback`, keeps finite values. Used by the input
 // contract: isnan/isinf may be folded away under fast-math, so the test is written as a
@@ -48,7 +103,7 @@ OPENPBR_FUNC vec3 openpbr_clamp_finite(vec3 v, float low, float high)
 OPENPBR_FUNC vec3 openpbr_safe_normalize(vec3 v, vec3 fallback)
 {
     const float length_squared = dot(v, v);
-    return (length_squared > 1e-30f && length_squared <= OPENPBR_FLOAT_MAX) ? v * inversesqrt(length_squared)
+    return (length_squared > 1e-30f && length_squared <= OPENPBR_FLOAT_MAX) ? v * openpbr_rsqrt(length_squared)
                                                                               : fallback;
 }
 

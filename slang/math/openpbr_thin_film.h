@@ -574,6 +574,38 @@ OPENPBR_FUNC vec3 openpbr_thin_film_fresnel_conductor_fast(float cos_theta, floa
         0.0f, 1.0f);
 }
 
+// ---- Model choice ----------------------------------------------------------------------------
+
+// OPENPBR_THIN_FILM_MODEL picks what the Fresnel factors of filmed lobes evaluate, e.g.
+// -DOPENPBR_THIN_FILM_MODEL=OPENPBR_THIN_FILM_MODEL_FAST. Default FULL (the spectral model);
+// FAST is the three-Gaussian approximation above (docs/accuracy-vs-time.md has its error and
+// time).
+#define OPENPBR_THIN_FILM_MODEL_FULL 0
+#define OPENPBR_THIN_FILM_MODEL_FAST 1
+#ifndef OPENPBR_THIN_FILM_MODEL
+#define OPENPBR_THIN_FILM_MODEL OPENPBR_THIN_FILM_MODEL_FULL
+#endif
+
+OPENPBR_FUNC vec3 openpbr_thin_film_fresnel_dielectric_model(float cos_theta, float eta_outside, float eta_film,
+                                                             float eta_base, float thickness_um)
+{
+#if OPENPBR_THIN_FILM_MODEL == OPENPBR_THIN_FILM_MODEL_FAST
+    return openpbr_thin_film_fresnel_dielectric_fast(cos_theta, eta_outside, eta_film, eta_base, thickness_um);
+#else
+    return openpbr_thin_film_fresnel_dielectric(cos_theta, eta_outside, eta_film, eta_base, thickness_um);
+#endif
+}
+
+OPENPBR_FUNC vec3 openpbr_thin_film_fresnel_conductor_model(float cos_theta, float eta_outside, float eta_film,
+                                                            vec3 base_n, vec3 base_k, float thickness_um)
+{
+#if OPENPBR_THIN_FILM_MODEL == OPENPBR_THIN_FILM_MODEL_FAST
+    return openpbr_thin_film_fresnel_conductor_fast(cos_theta, eta_outside, eta_film, base_n, base_k, thickness_um);
+#else
+    return openpbr_thin_film_fresnel_conductor(cos_theta, eta_outside, eta_film, base_n, base_k, thickness_um);
+#endif
+}
+
 // ---- Metal IOR from artist colours ------------------------------------------------------------
 
 // Gulbrandsen 2014, "Artist Friendly Metallic Fresnel" (JCGT 3(4)): the complex IOR n + i k

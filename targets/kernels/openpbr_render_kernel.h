@@ -85,7 +85,7 @@
 
 // The library's macros do not cross the Slang module boundary, so the kernel spells the few it
 // needs itself (host/render.cpp checks them against the library's with static_assert).
-#define OPENPBR_RENDER_FLOAT_MAX 3.40282347e+38f
+#define OPENPBR_RENDER_FLOAT_MAX 3.4e+38f  // = OPENPBR_FLOAT_MAX (Slang reads 3.40282347e+38f as inf)
 #define OPENPBR_RENDER_TWO_PI 6.28318530717958647692f
 #define OPENPBR_RENDER_LOBE_TYPE_SPECULAR 16u
 
