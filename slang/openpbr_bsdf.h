@@ -354,8 +354,8 @@ OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare_lobes_of(OPENPBR_IN(OpenPBR_Re
     bsdf.specular = openpbr_microfacet_reflection_lobe_empty(OPENPBR_LOBE_ID_SPECULAR_REFLECTION);
     bsdf.metal = openpbr_microfacet_reflection_lobe_empty(OPENPBR_LOBE_ID_METAL);
     bsdf.thin_transmission = openpbr_microfacet_reflection_lobe_empty(OPENPBR_LOBE_ID_SPECULAR_TRANSMISSION);
-    bsdf.diffuse = openpbr_diffuse_lobe_init(zero, zero, 0.0f, 1.0f, normal_view);
-    bsdf.diffuse_transmission = openpbr_diffuse_lobe_init(zero, zero, 0.0f, -1.0f, normal_view);
+    bsdf.diffuse = openpbr_diffuse_lobe_empty(1.0f);
+    bsdf.diffuse_transmission = openpbr_diffuse_lobe_empty(-1.0f);
     bsdf.transmission = openpbr_dielectric_lobe_init(zero, zero, vec2(1.0f), vec3(1.0f), false,
                                                      OPENPBR_LOBE_ID_SPECULAR_TRANSMISSION, normal_view);
 
@@ -428,9 +428,13 @@ OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare_lobes_of(OPENPBR_IN(OpenPBR_Re
     vec3 specular_albedo = vec3(0.0f);
     if (dielectric_weight > 0.0f)
     {
-        const OpenPBR_Fresnel dielectric_fresnel =
-            openpbr_add_thin_film(openpbr_make_dielectric_fresnel(eta_channels.y, inputs.specular_color), film_weight,
-                                  inputs.thin_film_thickness, inputs.thin_film_ior, film_outside_ior);
+        // The film only where there is one: each copy of the Fresnel struct costs (prepare).
+        OpenPBR_Fresnel dielectric_fresnel = openpbr_make_dielectric_fresnel(eta_channels.y, inputs.specular_color);
+        if (film_weight > 0.0f)
+        {
+            dielectric_fresnel = openpbr_add_thin_film(dielectric_fresnel, film_weight, inputs.thin_film_thickness,
+                                                       inputs.thin_film_ior, film_outside_ior);
+        }
         const vec3 specular_compensation =
             openpbr_multiple_scattering_compensation(vec3(openpbr_dielectric_f0(eta_channels.y)), base_lobe_albedo.albedo);
         const float plain_reflection_albedo =
@@ -513,9 +517,13 @@ OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare_lobes_of(OPENPBR_IN(OpenPBR_Re
     if (metalness > 0.0f)
     {
         const vec3 metal_f0 = inputs.base_weight * inputs.base_color;
-        const OpenPBR_Fresnel metal_fresnel = openpbr_add_thin_film(
-            openpbr_make_f82_fresnel(metal_f0, inputs.specular_color, vec3(min(inputs.specular_weight, 1.0f))), film_weight,
-            inputs.thin_film_thickness, inputs.thin_film_ior, film_outside_ior);
+        OpenPBR_Fresnel metal_fresnel =
+            openpbr_make_f82_fresnel(metal_f0, inputs.specular_color, vec3(min(inputs.specular_weight, 1.0f)));
+        if (film_weight > 0.0f)
+        {
+            metal_fresnel = openpbr_add_thin_film(metal_fresnel, film_weight, inputs.thin_film_thickness,
+                                                  inputs.thin_film_ior, film_outside_ior);
+        }
         const vec3 metal_compensation = openpbr_multiple_scattering_compensation(metal_f0, base_lobe_albedo.albedo);
         bsdf.metal = openpbr_microfacet_reflection_lobe_init(metal_compensation * metalness, alpha, metal_fresnel,
                                                              OPENPBR_LOBE_ID_METAL, 1.0f, view);

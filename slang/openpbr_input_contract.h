@@ -104,10 +104,15 @@ OPENPBR_FUNC OpenPBR_ResolvedInputs openpbr_apply_input_contract(OPENPBR_IN(Open
     result.geometry_basis = openpbr_rotate_basis(
         openpbr_make_basis(inputs.geometry_basis.normal, inputs.geometry_basis.tangent, inputs.geometry_basis.bitangent),
         inputs.specular_anisotropy_rotation);
-    result.geometry_coat_basis = openpbr_rotate_basis(
-        openpbr_make_basis(inputs.geometry_coat_basis.normal, inputs.geometry_coat_basis.tangent,
-                           inputs.geometry_coat_basis.bitangent),
-        inputs.coat_anisotropy_rotation);
+    // A coat of weight 0 is never looked at (prepare, eval and sample read its frame only where
+    // coat_weight > 0; the fuzz frame blends it in by coat_weight), so it takes the base frame
+    // instead of a second re-orthonormalization (a fifth of the default material's prepare).
+    result.geometry_coat_basis =
+        result.coat_weight > 0.0f
+            ? openpbr_rotate_basis(openpbr_make_basis(inputs.geometry_coat_basis.normal, inputs.geometry_coat_basis.tangent,
+                                                      inputs.geometry_coat_basis.bitangent),
+                                   inputs.coat_anisotropy_rotation)
+            : result.geometry_basis;
     result.specular_anisotropy_rotation = vec2(1.0f, 0.0f);
     result.coat_anisotropy_rotation = vec2(1.0f, 0.0f);
     return result;

@@ -115,7 +115,11 @@ OPENPBR_FUNC OpenPBR_ResolvedInputs openpbr_make_default_resolved_inputs()
     inputs.emission_color = vec3(1.0f, 1.0f, 1.0f);
     inputs.geometry_opacity = 1.0f;
     inputs.geometry_thin_walled = false;
-    inputs.geometry_basis = openpbr_make_basis(vec3(0.0f, 0.0f, 1.0f));
+    // openpbr_make_basis(+z) written out as the constants it returns (zero signs included): the
+    // input contract builds these defaults in every prepare, and the call was not folded.
+    inputs.geometry_basis.tangent = vec3(1.0f, -0.0f, -0.0f);
+    inputs.geometry_basis.bitangent = vec3(-0.0f, 1.0f, -0.0f);
+    inputs.geometry_basis.normal = vec3(0.0f, 0.0f, 1.0f);
     inputs.geometry_coat_basis = inputs.geometry_basis;
     inputs.specular_anisotropy_rotation = vec2(1.0f, 0.0f);
     inputs.coat_anisotropy_rotation = vec2(1.0f, 0.0f);

@@ -34,14 +34,15 @@ OPENPBR_FUNC OpenPBR_Basis openpbr_make_basis(vec3 normal)
 // in a mesh's tangent.w) chooses the bitangent side; 0 is treated as +1.
 OPENPBR_FUNC OpenPBR_Basis openpbr_make_basis(vec3 normal, vec3 tangent, float handedness)
 {
-    const OpenPBR_Basis fallback = openpbr_make_basis(normal);
-    const vec3 n = fallback.normal;
+    // The normal as the fallback frame normalizes it; the rest of that frame is built only where
+    // it is used (every prepare builds this frame, and a valid tangent is the common case).
+    const vec3 n = openpbr_safe_normalize(normal, vec3(0.0f, 0.0f, 1.0f));
     const vec3 t_orthogonal = tangent - n * dot(n, tangent);
     const float length_squared = dot(t_orthogonal, t_orthogonal);
     // 1e-12 relative to a unit tangent: below this the direction is rounding noise.
     if (!(length_squared > 1e-12f * max(dot(tangent, tangent), 1e-30f)) || !(length_squared <= OPENPBR_FLOAT_MAX))
     {
-        return fallback;
+        return openpbr_make_basis(normal);
     }
     // Gram-Schmidt twice ("twice is enough", Giraud et al. 2005, Numer. Math. 101): for a tangent
     // nearly parallel to the normal the first projection keeps a rounding error of ~1e-7 |tangent|
@@ -51,7 +52,11 @@ OPENPBR_FUNC OpenPBR_Basis openpbr_make_basis(vec3 normal, vec3 tangent, float h
     const vec3 t_second = t_first - n * dot(n, t_first);
     OpenPBR_Basis basis;
     basis.normal = n;
-    basis.tangent = openpbr_safe_normalize(t_second, fallback.tangent);
+    const float second_length_squared = dot(t_second, t_second);
+    // openpbr_safe_normalize(t_second, fallback tangent), with the fallback built only when taken.
+    basis.tangent = (second_length_squared > 1e-30f && second_length_squared <= OPENPBR_FLOAT_MAX)
+                        ? t_second * openpbr_rsqrt(second_length_squared)
+                        : openpbr_make_basis(normal).tangent;
     basis.bitangent = cross(n, basis.tangent) * (handedness < 0.0f ? -1.0f : 1.0f);
     return basis;
 }

@@ -168,11 +168,10 @@ OPENPBR_FUNC vec3 openpbr_fresnel_evaluate(OPENPBR_IN(OpenPBR_Fresnel) fresnel, 
     {
         return fresnel.tint * plain;
     }
-    const vec3 film = fresnel.kind == OPENPBR_FRESNEL_F82
-                          ? openpbr_thin_film_fresnel_conductor_model(cos_theta, fresnel.outside_ior, fresnel.film_ior,
-                                                                fresnel.base_n, fresnel.base_k, fresnel.film_thickness_um)
-                          : openpbr_thin_film_fresnel_dielectric_model(cos_theta, fresnel.outside_ior, fresnel.film_ior,
-                                                                 fresnel.base_ior, fresnel.film_thickness_um);
+    // One call for both bases: the film code is compiled once per call site, not twice.
+    const vec3 film = openpbr_thin_film_fresnel_model(cos_theta, fresnel.outside_ior, fresnel.film_ior,
+                                                      fresnel.kind == OPENPBR_FRESNEL_F82, fresnel.base_ior,
+                                                      fresnel.base_n, fresnel.base_k, fresnel.film_thickness_um);
     return fresnel.tint * mix(plain, film, fresnel.film_weight);
 }
 
