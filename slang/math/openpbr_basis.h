@@ -63,9 +63,24 @@ OPENPBR_FUNC OpenPBR_Basis openpbr_make_basis(vec3 normal, vec3 tangent, float h
 
 // Frame from normal, tangent and bitangent: the bitangent only contributes its handedness
 // (which side of the normal-tangent plane it is on), as tangent frames from meshes do.
+// A frame that is already orthonormal to within a few float roundings (unit normal and tangent
+// within 1e-6 in squared length, orthogonal within 1e-6, as a mesh's normalized frame is) is
+// kept as given, with the bitangent on its side: re-orthonormalizing would move it by rounding
+// only, and its three square roots and divisions were a sixth of the default material's prepare.
 OPENPBR_FUNC OpenPBR_Basis openpbr_make_basis(vec3 normal, vec3 tangent, vec3 bitangent)
 {
-    const float handedness = dot(cross(normal, tangent), bitangent) < 0.0f ? -1.0f : 1.0f;
+    const vec3 normal_cross_tangent = cross(normal, tangent);
+    const float handedness = dot(normal_cross_tangent, bitangent) < 0.0f ? -1.0f : 1.0f;
+    // Written so that NaN fails every test and takes the general path.
+    if (abs(dot(normal, normal) - 1.0f) <= 1e-6f && abs(dot(tangent, tangent) - 1.0f) <= 1e-6f &&
+        abs(dot(normal, tangent)) <= 1e-6f)
+    {
+        OpenPBR_Basis basis;
+        basis.normal = normal;
+        basis.tangent = tangent;
+        basis.bitangent = normal_cross_tangent * handedness;
+        return basis;
+    }
     return openpbr_make_basis(normal, tangent, handedness);
 }
 
