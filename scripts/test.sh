@@ -1,7 +1,25 @@
 #!/usr/bin/env bash
-# The whole test suite: set up what is missing, build, run every test through ctest.
+# The whole test suite: set up what is missing, build, run every test through ctest, then the
+# stability checks of docs/stability.md: the BSDF fuzzer for a bounded time (scripts/ci_fuzz.sh,
+# 60 s) and the CPU unit tests under ASan + UBSan (scripts/ci_sanitizers.sh). Every step runs
+# even when an earlier one fails; the script fails if any did. OPENPBR_SKIP_SANITIZERS=1 and
+# OPENPBR_SKIP_FUZZ=1 leave those steps out, e.g. for a quick local run.
 set -euo pipefail
 repo_root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 "$repo_root/scripts/setup.sh"
 build_dir=${OPENPBR_BUILD_DIR:-$repo_root/build}
-ctest --test-dir "$build_dir" --output-on-failure --parallel "$(nproc)" "$@"
+failed=()
+ctest_status=0
+ctest --test-dir "$build_dir" --output-on-failure --parallel "$(nproc)" "$@" || ctest_status=$?
+((ctest_status == 0)) || failed+=(ctest)
+if [[ "${OPENPBR_SKIP_FUZZ:-0}" != 1 ]]; then
+  "$repo_root/scripts/ci_fuzz.sh" || failed+=(ci_fuzz)
+fi
+if [[ "${OPENPBR_SKIP_SANITIZERS:-0}" != 1 ]]; then
+  "$repo_root/scripts/ci_sanitizers.sh" || failed+=(ci_sanitizers)
+fi
+if ((${#failed[@]})); then
+  echo "test: failed: ${failed[*]}" >&2
+  # ctest's own status when it failed (e.g. 8 for failed tests), 1 otherwise.
+  exit $((ctest_status != 0 ? ctest_status : 1))
+fi

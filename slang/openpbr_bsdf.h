@@ -252,6 +252,17 @@ OPENPBR_FUNC vec3 openpbr_coat_transmittance(vec3 half_log_color, float inverse_
     return exp(half_log_color / max(mu_t, 1e-4f));
 }
 
+// A local view as the lobes see it. Above the surface but closer to grazing than the tables hold
+// (OPENPBR_LUT_MIN_VIEW_COSINE), it is seen at that cosine, so the albedo estimates stay valid:
+// below it a lobe whose smooth anisotropic direction (alpha_b down to 1e-7) faces the view turns
+// rough in projection (alpha_b tan(theta) > 1) and reflected up to twice the tabulated albedo
+// (white anisotropic metal at cos 1e-8: mean sample weight 1.90). The length changes by at most
+// 5e-9. At or below the horizon the cosine is 0: nothing scatters.
+OPENPBR_FUNC vec3 openpbr_floor_view_cosine(vec3 view)
+{
+    return vec3(view.x, view.y, view.z > 0.0f ? max(view.z, OPENPBR_LUT_MIN_VIEW_COSINE) : 0.0f);
+}
+
 OPENPBR_FUNC OpenPBR_Basis openpbr_flip_basis(OPENPBR_IN(OpenPBR_Basis) basis)
 {
     OpenPBR_Basis flipped;
@@ -259,6 +270,19 @@ OPENPBR_FUNC OpenPBR_Basis openpbr_flip_basis(OPENPBR_IN(OpenPBR_Basis) basis)
     flipped.bitangent = -basis.bitangent;
     flipped.normal = -basis.normal;
     return flipped;
+}
+
+// Selection probability below which a lobe is dropped, relative to the sum over all lobes, e.g.
+// 1e-9 (below float resolution of that sum, 6e-8). Such lobes come from weights or colors near
+// the underflow limit (e.g. opacity 1e-7 times a coat color 1e-7), where the albedo estimate and
+// the value eval returns are products of different factors and can disagree by orders of
+// magnitude: a sample of any lobe then met a pdf far below the dropped lobe's value (fuzzing found
+// sample weights of 1e4 to 1e22, docs/stability.md). Dropping loses at most 1e-9 of the energy.
+#define OPENPBR_MIN_LOBE_PROBABILITY 1e-9f
+
+OPENPBR_FUNC float openpbr_kept_probability(float probability, float cut)
+{
+    return probability >= cut ? probability : 0.0f;
 }
 
 // Every lobe below is set up only where its weight is above zero (issue "a lobe whose weight is
@@ -283,14 +307,14 @@ OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare_lobes_of(OPENPBR_IN(OpenPBR_Re
     bsdf.basis = back_face ? openpbr_flip_basis(inputs.geometry_basis) : inputs.geometry_basis;
     bsdf.coat_basis = back_face ? openpbr_flip_basis(inputs.geometry_coat_basis) : inputs.geometry_coat_basis;
     bsdf.view = openpbr_to_local(bsdf.basis, bsdf.view_world);
-    bsdf.view.z = max(bsdf.view.z, 0.0f);
+    bsdf.view = openpbr_floor_view_cosine(bsdf.view);
     // Coat and fuzz frames only where those layers exist; otherwise the base frame stands in
     // (eval then transforms the light once).
     bsdf.coat_view = bsdf.view;
     if (coat_weight > 0.0f)
     {
         bsdf.coat_view = openpbr_to_local(bsdf.coat_basis, bsdf.view_world);
-        bsdf.coat_view.z = max(bsdf.coat_view.z, 0.0f);
+        bsdf.coat_view = openpbr_floor_view_cosine(bsdf.coat_view);
     }
     bsdf.fuzz_basis = bsdf.basis;
     bsdf.fuzz_view = bsdf.view;
@@ -298,7 +322,7 @@ OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare_lobes_of(OPENPBR_IN(OpenPBR_Re
     {
         bsdf.fuzz_basis = openpbr_make_basis(mix(bsdf.basis.normal, bsdf.coat_basis.normal, coat_weight));
         bsdf.fuzz_view = openpbr_to_local(bsdf.fuzz_basis, bsdf.view_world);
-        bsdf.fuzz_view.z = max(bsdf.fuzz_view.z, 0.0f);
+        bsdf.fuzz_view = openpbr_floor_view_cosine(bsdf.fuzz_view);
     }
     const vec3 view = bsdf.view;
     const float mu = view.z;
@@ -579,20 +603,33 @@ OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare_lobes_of(OPENPBR_IN(OpenPBR_Re
     const float transmission_p = openpbr_luminance(transmission_estimate * bsdf.under_coat_transmitted);
     const float thin_transmission_p = openpbr_luminance(thin_transmission_estimate * bsdf.under_coat_transmitted);
     const float pass_through_p = 1.0f - opacity;
-    const float total = fuzz_p + coat_p + specular_p + metal_p + diffuse_p + diffuse_transmission_p + transmission_p +
-                        thin_transmission_p + pass_through_p;
+    const float raw_total = fuzz_p + coat_p + specular_p + metal_p + diffuse_p + diffuse_transmission_p + transmission_p +
+                            thin_transmission_p + pass_through_p;
+    // Negligible lobes are dropped: probability 0, so eval, pdf and sample skip them alike.
+    const float cut = OPENPBR_MIN_LOBE_PROBABILITY * raw_total;
+    const float fuzz_kept = openpbr_kept_probability(fuzz_p, cut);
+    const float coat_kept = openpbr_kept_probability(coat_p, cut);
+    const float specular_kept = openpbr_kept_probability(specular_p, cut);
+    const float metal_kept = openpbr_kept_probability(metal_p, cut);
+    const float diffuse_kept = openpbr_kept_probability(diffuse_p, cut);
+    const float diffuse_transmission_kept = openpbr_kept_probability(diffuse_transmission_p, cut);
+    const float transmission_kept = openpbr_kept_probability(transmission_p, cut);
+    const float thin_transmission_kept = openpbr_kept_probability(thin_transmission_p, cut);
+    const float pass_through_kept = openpbr_kept_probability(pass_through_p, cut);
+    const float total = fuzz_kept + coat_kept + specular_kept + metal_kept + diffuse_kept + diffuse_transmission_kept +
+                        transmission_kept + thin_transmission_kept + pass_through_kept;
     // A denormal total (e.g. a metal of color 1e-40) would overflow 1 / total to infinity; below
     // the smallest normal float nothing is sampled (GPUs flush such values to 0 anyway).
     const float inverse_total = total >= OPENPBR_FLOAT_MIN_NORMAL ? 1.0f / total : 0.0f;
-    bsdf.probability_fuzz = fuzz_p * inverse_total;
-    bsdf.probability_coat = coat_p * inverse_total;
-    bsdf.probability_specular = specular_p * inverse_total;
-    bsdf.probability_metal = metal_p * inverse_total;
-    bsdf.probability_diffuse = diffuse_p * inverse_total;
-    bsdf.probability_diffuse_transmission = diffuse_transmission_p * inverse_total;
-    bsdf.probability_transmission = transmission_p * inverse_total;
-    bsdf.probability_thin_transmission = thin_transmission_p * inverse_total;
-    bsdf.probability_pass_through = pass_through_p * inverse_total;
+    bsdf.probability_fuzz = fuzz_kept * inverse_total;
+    bsdf.probability_coat = coat_kept * inverse_total;
+    bsdf.probability_specular = specular_kept * inverse_total;
+    bsdf.probability_metal = metal_kept * inverse_total;
+    bsdf.probability_diffuse = diffuse_kept * inverse_total;
+    bsdf.probability_diffuse_transmission = diffuse_transmission_kept * inverse_total;
+    bsdf.probability_transmission = transmission_kept * inverse_total;
+    bsdf.probability_thin_transmission = thin_transmission_kept * inverse_total;
+    bsdf.probability_pass_through = pass_through_kept * inverse_total;
     return bsdf;
 }
 
@@ -841,8 +878,10 @@ OPENPBR_FUNC OpenPBR_BsdfSample openpbr_sample(OPENPBR_IN(OpenPBR_PreparedBsdf) 
     }
     else if (bsdf.probability_pass_through > 0.0f)
     {
-        lobe_sample = openpbr_make_lobe_sample(-bsdf.view, openpbr_lobe_type(OPENPBR_LOBE_ID_PASS_THROUGH,
-                                                                             OPENPBR_LOBE_TYPE_TRANSMISSION | OPENPBR_LOBE_TYPE_SPECULAR));
+        // Straight on from the unfloored view (bsdf.view may be raised to the tables' floor).
+        lobe_sample = openpbr_make_lobe_sample(-openpbr_to_local(bsdf.basis, bsdf.view_world),
+                                               openpbr_lobe_type(OPENPBR_LOBE_ID_PASS_THROUGH,
+                                                                 OPENPBR_LOBE_TYPE_TRANSMISSION | OPENPBR_LOBE_TYPE_SPECULAR));
         lobe_sample.delta_weight = bsdf.pass_through_weight;
         probability = bsdf.probability_pass_through;
         delta_factor = vec3(1.0f);
