@@ -6,10 +6,12 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <iostream>
 #include <limits>
 #include <map>
+#include <optional>
 #include <random>
 #include <sstream>
 #include <stdexcept>
@@ -18,8 +20,12 @@
 #include <tbb/parallel_for.h>
 
 #include "host/accuracy_variants.h"
+#include "host/conformance.h"
 #include "host/lut_generator.h"
+#include "host/material_library.h"
 #include "host/microsurface.h"
+#include "host/shipped_tables.h"
+#include "host/vulkan_runner.h"
 #include "slang/baselines/openpbr_baseline_ggx.h"
 #include "slang/openpbr.h"
 
@@ -162,7 +168,8 @@ std::vector<AccuracyQuery> workload_queries(std::size_t material_count, std::uin
     return queries;
 }
 
-// Best of three runs of `run`, in ns per query.
+// Best of three runs of `run`, in ns per query (the minimum is the least disturbed by the other
+// processes of a shared machine).
 template <typename Function> double time_ns_per_query(std::size_t queries, Function run)
 {
     double best = std::numeric_limits<double>::infinity();
@@ -349,6 +356,107 @@ CompileResult slang_compile(const std::filesystem::path& root, const std::vector
     return result;
 }
 
+// ---- lavapipe ---------------------------------------------------------------------------------
+
+// The study's workload in the conformance kernel's layout (targets/kernels/conformance.slang,
+// openpbr_conformance_kernel.h): per query the material index, view, light and the sampler's
+// three numbers; the materials packed by the single-source field list.
+struct LavapipeWorkload
+{
+    std::vector<float> queries;
+    std::vector<float> materials;
+    std::size_t query_count = 0;
+    std::size_t result_floats = 0;  // floats per result record
+};
+
+LavapipeWorkload lavapipe_workload(const std::vector<AccuracyMaterial>& materials, const std::vector<AccuracyQuery>& queries)
+{
+    std::vector<Material> library;
+    for (const AccuracyMaterial& material : materials)
+    {
+        Material entry = default_material();
+        accuracy_apply_material(material, entry.inputs);
+        library.push_back(entry);
+    }
+    LavapipeWorkload workload;
+    workload.materials = pack_materials(library);
+    workload.query_count = queries.size();
+    // The record sizes come from the conformance module itself (a one-query batch), so this
+    // layout cannot drift from the kernel's.
+    const std::vector<float> probe = make_queries(1, 1, 1);
+    const std::size_t query_floats = probe.size();
+    workload.result_floats = run_conformance_cpu(probe, pack_materials({default_material()})).size();
+    if (query_floats < 10)
+    {
+        throw std::runtime_error("accuracy: unexpected conformance query record of " + std::to_string(query_floats) + " floats");
+    }
+    workload.queries.assign(queries.size() * query_floats, 0.0f);
+    for (std::size_t i = 0; i < queries.size(); ++i)
+    {
+        float* record = workload.queries.data() + i * query_floats;
+        record[0] = float(queries[i].material);
+        std::copy(queries[i].view, queries[i].view + 3, record + 1);
+        std::copy(queries[i].light, queries[i].light + 3, record + 4);
+        std::copy(queries[i].u, queries[i].u + 3, record + 7);
+    }
+    return workload;
+}
+
+struct LavapipeRun
+{
+    double queries_per_second = 0.0;
+    std::vector<float> values;  // eval diffuse + specular, 3 per query
+};
+
+// One conformance kernel on the workload: bindings 0 tables (`table`), 1 fuzz LTC table,
+// 2 queries, 3 materials, 4 parameters, 5 results (host/conformance.cpp's layout), and with
+// `filtered_size` > 0 binding 6, table 0 (the first filtered_size^2 floats of `table`) as a
+// bilinearly filtered image (OPENPBR_LUT_FILTERED_2D). Nine dispatches; the first includes
+// llvmpipe's compile, the rate is from the median of the other eight (the machine is shared).
+LavapipeRun run_on_lavapipe(VulkanContext& context, const std::filesystem::path& spirv, std::vector<std::byte> table,
+                            const LavapipeWorkload& workload, std::uint32_t filtered_size = 0)
+{
+    std::vector<std::byte> fuzz_bytes = to_bytes(shipped_fuzz_ltc());
+    std::vector<std::byte> query_bytes = to_bytes(workload.queries);
+    std::vector<std::byte> material_bytes = to_bytes(workload.materials);
+    std::vector<std::byte> result_bytes(workload.query_count * workload.result_floats * sizeof(float));
+    std::vector<std::byte> parameter_bytes =
+        to_bytes(std::vector<std::uint32_t>{std::uint32_t(workload.query_count), 0, 0, 0});
+    std::vector<std::byte> image_bytes(table.begin(),
+                                       table.begin() + std::ptrdiff_t(filtered_size * filtered_size * sizeof(float)));
+    std::vector<BufferBinding> buffers = {{0, &table, false},           {1, &fuzz_bytes, false},
+                                          {2, &query_bytes, false},     {3, &material_bytes, false},
+                                          {4, &parameter_bytes, false}, {5, &result_bytes, true}};
+    if (filtered_size > 0)
+    {
+        BufferBinding image;
+        image.binding = 6;
+        image.data = &image_bytes;
+        image.image_width = filtered_size;
+        image.image_height = filtered_size;
+        buffers.push_back(image);
+    }
+    ComputePipelineDescription description;
+    description.spirv_words = load_spirv_file(spirv.string());
+    description.entry_point = "main";
+    description.bindings = binding_layouts_of(buffers);
+    ComputePipeline pipeline(context, description);
+    const DispatchTiming timing = run(pipeline, buffers, std::uint32_t((workload.query_count + 63) / 64), 1, 1, 9);
+    LavapipeRun result;
+    result.queries_per_second = double(workload.query_count) / (std::max(timing.dispatch_ms, 1e-6) * 1e-3);
+    const std::vector<float> results = from_bytes<float>(result_bytes);
+    result.values.resize(3 * workload.query_count);
+    for (std::size_t i = 0; i < workload.query_count; ++i)
+    {
+        for (int c = 0; c < 3; ++c)
+        {
+            // Result record: eval.diffuse (3), eval.specular (3), ...
+            result.values[3 * i + c] = results[i * workload.result_floats + c] + results[i * workload.result_floats + 3 + c];
+        }
+    }
+    return result;
+}
+
 }  // namespace
 
 std::vector<float> generate_dfg_table(int size, std::uint32_t samples, int visibility)
@@ -395,7 +503,12 @@ std::vector<AccuracyRow> run_accuracy_study(const AccuracyOptions& requested)
     const Grid grid = make_grid(options.quick);
     std::vector<BsdfVariant> variants = bsdf_variants();
     const int baseline_count = 2 + 4;
-    Progress progress(options.progress, 3 + int(variants.size()) + baseline_count + (options.compile ? 8 : 0));
+    int vulkan_settings = 0;
+    for (const BsdfVariant& variant : variants)
+    {
+        vulkan_settings += variant.on_vulkan ? 1 : 0;
+    }
+    Progress progress(options.progress, 4 + int(variants.size()) + baseline_count + (options.compile ? vulkan_settings + 1 : 0));
     std::vector<AccuracyRow> rows;
     auto add = [&rows](const std::string& knob, const std::string& setting, const std::string& error_metric,
                        double error, const std::string& time_metric, double time, bool plotted = false) {
@@ -462,6 +575,7 @@ std::vector<AccuracyRow> run_accuracy_study(const AccuracyOptions& requested)
         halves[i] = glm::packHalf1x16(openpbr_lut_data[i]);
     }
     accuracy_set_half_table(halves.data());
+    accuracy_set_buffer_table(openpbr_lut_data);
     progress.step("tables at 16 and 64 nodes, 16-bit values");
 
     const std::vector<AccuracyMaterial> materials = workload_materials(false);
@@ -471,16 +585,50 @@ std::vector<AccuracyRow> run_accuracy_study(const AccuracyOptions& requested)
     std::vector<float> film_reference(3 * queries.size());
     variants.front().eval(materials, queries, reference.data());
     variants.front().eval(film_materials, queries, film_reference.data());
+    std::vector<float> reference_samples(3 * queries.size());
+    variants.front().sample(materials, queries, reference_samples.data());
+    // The double-precision build's values (the precision knob's reference).
+    std::vector<float> double_reference;
+    for (const BsdfVariant& variant : variants)
+    {
+        if (variant.double_reference)
+        {
+            double_reference.resize(3 * queries.size());
+            variant.eval(materials, queries, double_reference.data());
+        }
+    }
     progress.step("reference evaluations");
 
     const std::vector<AccuracyMaterial> white_materials = {metal(1.0f, 0.2f), metal(1.0f, 0.5f), metal(1.0f, 0.9f),
                                                            glass(0.2f), glass(0.5f), glass(0.9f)};
-    for (const BsdfVariant& variant : variants)
+    // CPU times of every variant in rounds (each round times every variant once, the minimum
+    // over the rounds is kept): a burst of load from other processes then slows one round of
+    // every variant instead of every round of one, so the settings stay comparable.
+    std::vector<double> eval_times(variants.size(), std::numeric_limits<double>::infinity());
+    std::vector<double> sample_times(variants.size(), std::numeric_limits<double>::infinity());
     {
+        std::vector<float> scratch(3 * queries.size());
+        const int rounds = options.quick ? 2 : 15;
+        for (int round = 0; round < rounds; ++round)
+        {
+            for (std::size_t v = 0; v < variants.size(); ++v)
+            {
+                eval_times[v] = std::min(eval_times[v], time_ns_per_query(queries.size(), [&] {
+                                             variants[v].eval(materials, queries, scratch.data());
+                                         }));
+                sample_times[v] = std::min(sample_times[v], time_ns_per_query(queries.size(), [&] {
+                                               variants[v].sample(materials, queries, scratch.data());
+                                           }));
+            }
+        }
+    }
+    progress.step("CPU timings");
+    for (std::size_t v = 0; v < variants.size(); ++v)
+    {
+        const BsdfVariant& variant = variants[v];
         std::vector<float> values(3 * queries.size());
-        const double eval_ns = time_ns_per_query(queries.size(), [&] { variant.eval(materials, queries, values.data()); });
-        const double sample_ns =
-            time_ns_per_query(queries.size(), [&] { variant.sample(materials, queries, values.data()); });
+        const double eval_ns = eval_times[v];
+        const double sample_ns = sample_times[v];
         variant.eval(materials, queries, values.data());
         const double query_error = max_relative_error(values, reference);
 
@@ -514,6 +662,28 @@ std::vector<AccuracyRow> run_accuracy_study(const AccuracyOptions& requested)
             percentile_relative_error(values, reference, 0.5), "CPU ns per prepare+eval", eval_ns);
         add(knob, setting, "albedo estimator variance (mean)", variance, "CPU ns per prepare+sample", sample_ns);
         add(knob, setting, "variance x ns per sample", variance * sample_ns, "CPU ns per prepare+sample", sample_ns);
+        if (!double_reference.empty())
+        {
+            add(knob, setting, "per-query relative error vs C++ double (median)",
+                percentile_relative_error(values, double_reference, 0.5), "CPU ns per prepare+eval", eval_ns);
+            add(knob, setting, "per-query relative error vs C++ double (99th percentile)",
+                percentile_relative_error(values, double_reference), "CPU ns per prepare+eval", eval_ns);
+        }
+        if (variant.bit_identical_to_shipped)
+        {
+            // Array and buffer mode read the same floats with the same arithmetic
+            // (slang/openpbr_lut.h): count every output whose bits differ (the test asserts 0).
+            std::vector<float> samples(3 * queries.size());
+            variant.sample(materials, queries, samples.data());
+            std::size_t differing = 0;
+            for (std::size_t i = 0; i < values.size(); ++i)
+            {
+                differing += std::memcmp(&values[i], &reference[i], sizeof(float)) != 0 ? 1 : 0;
+                differing += std::memcmp(&samples[i], &reference_samples[i], sizeof(float)) != 0 ? 1 : 0;
+            }
+            add(knob, setting, "eval + sample outputs differing in bits from the array build (count)", double(differing),
+                "CPU ns per prepare+eval", eval_ns);
+        }
         if (variant.setting.find("thin film") != std::string::npos || variant.knob == "shipped")
         {
             std::vector<float> film_values(3 * queries.size());
@@ -592,36 +762,119 @@ std::vector<AccuracyRow> run_accuracy_study(const AccuracyOptions& requested)
         progress.step("baseline: " + setting);
     }
 
-    // Slang compile time and SPIR-V size of the conformance kernel per setting.
+    // Per setting that compiles to SPIR-V: the Slang compile time and SPIR-V size of the
+    // conformance kernel with the setting's defines, then that kernel on lavapipe over the
+    // timing workload (queries/s and its per-query error against the CPU shipped build).
     if (options.compile)
     {
-        const std::vector<std::pair<std::string, std::vector<std::string>>> settings = {
-            {"shipped", {}},
-            {"compensation none", {"OPENPBR_COMPENSATION_MODE=0"}},
-            {"compensation analytic fit", {"OPENPBR_COMPENSATION_MODE=1"}},
-            {"16-bit table values", {"OPENPBR_LUT_16BIT=1"}},
-            {"fast math (all hooks)", {"OPENPBR_FAST_RCP_SQRT=1", "OPENPBR_FAST_SQRT=1", "OPENPBR_FAST_NORMALIZE=1"}},
-            {"vndf Heitz 2018", {"OPENPBR_VNDF_METHOD=1"}},
-            {"vndf bounded", {"OPENPBR_VNDF_METHOD=2"}},
-            {"thin film fast", {"OPENPBR_THIN_FILM_MODEL=1"}},
-        };
         const std::filesystem::path directory =
             options.cache_directory.empty() ? std::filesystem::temp_directory_path() : options.cache_directory;
         std::filesystem::create_directories(directory);
-        for (const auto& [name, defines] : settings)
+        std::string vulkan_error;
+        std::optional<VulkanContext> context = VulkanContext::create(VulkanOptions{}, &vulkan_error);
+        if (!context)
         {
-            const CompileResult result = slang_compile(options.repository_root, defines, directory / "accuracy_kernel.spv");
-            if (result.ok)
-            {
-                add("slang compile", name, "SPIR-V bytes", result.bytes, "Slang compile ms (wasm, spirv)", result.milliseconds);
-            }
-            else
-            {
-                std::cerr << "\nopenpbr bench accuracy: the Slang compile of '" << name << "' failed (node and "
-                          << (options.repository_root / "targets/slangc.mjs").string() << " needed); row left out\n";
-            }
-            progress.step("slang compile: " + name);
+            std::cerr << "\nopenpbr bench accuracy: no Vulkan device (" << vulkan_error << "); lavapipe rows left out\n";
         }
+        const std::uint32_t lavapipe_queries = std::max<std::uint32_t>(options.timing_queries, 1u << 16);
+        const std::vector<AccuracyQuery> gpu_queries = workload_queries(materials.size(), lavapipe_queries);
+        const LavapipeWorkload workload = lavapipe_workload(materials, gpu_queries);
+        const LavapipeWorkload film_workload = lavapipe_workload(film_materials, gpu_queries);
+        std::vector<float> gpu_reference(3 * gpu_queries.size());
+        variants.front().eval(materials, gpu_queries, gpu_reference.data());
+        std::vector<float> gpu_film_reference(3 * gpu_queries.size());
+        variants.front().eval(film_materials, gpu_queries, gpu_film_reference.data());
+        LavapipeRun buffer_run;  // the shipped kernel (float32 buffer tables) on lavapipe
+        std::vector<std::uint32_t> half_words((shipped_count + 1) / 2, 0u);
+        for (std::size_t i = 0; i < shipped_count; ++i)
+        {
+            half_words[i / 2] |= std::uint32_t(halves[i]) << (16 * (i % 2));
+        }
+        for (const BsdfVariant& variant : variants)
+        {
+            if (!variant.on_vulkan)
+            {
+                continue;
+            }
+            const std::filesystem::path spirv = directory / "accuracy_kernel.spv";
+            std::filesystem::remove(spirv);
+            const CompileResult result = slang_compile(options.repository_root, variant.slang_defines, spirv);
+            if (!result.ok)
+            {
+                std::cerr << "\nopenpbr bench accuracy: the Slang compile of '" << variant.setting << "' failed (node and "
+                          << (options.repository_root / "targets/slangc.mjs").string() << " needed); row left out\n";
+                progress.step("slang + lavapipe: " + variant.setting);
+                continue;
+            }
+            add(variant.knob, variant.setting, "SPIR-V bytes", result.bytes, "Slang compile ms (wasm, spirv)",
+                result.milliseconds);
+            if (context)
+            {
+                const std::vector<std::byte> table =
+                    variant.table == AccuracyTable::half      ? to_bytes(half_words)
+                    : variant.table == AccuracyTable::size_16 ? to_bytes(table_16)
+                    : variant.table == AccuracyTable::size_64 ? to_bytes(table_64)
+                                                              : to_bytes(shipped_lut());
+                const LavapipeRun run = run_on_lavapipe(*context, spirv, table, workload);
+                if (&variant == &variants.front())
+                {
+                    buffer_run = run;
+                }
+                add(variant.knob, variant.setting, "lavapipe per-query relative error vs CPU shipped (median)",
+                    percentile_relative_error(run.values, gpu_reference, 0.5), "lavapipe queries/s", run.queries_per_second);
+                add(variant.knob, variant.setting, "lavapipe per-query relative error vs CPU shipped (99th percentile)",
+                    percentile_relative_error(run.values, gpu_reference), "lavapipe queries/s", run.queries_per_second);
+                if (variant.setting.find("thin film") != std::string::npos || variant.knob == "shipped")
+                {
+                    // Thin film only shows on materials with a film (the CPU rows' film workload).
+                    const LavapipeRun film_run = run_on_lavapipe(*context, spirv, table, film_workload);
+                    add(variant.knob, variant.setting,
+                        "lavapipe per-query relative error vs CPU full thin film (99th percentile)",
+                        percentile_relative_error(film_run.values, gpu_film_reference), "lavapipe queries/s (thin-film materials)",
+                        film_run.queries_per_second);
+                }
+            }
+            progress.step("slang + lavapipe: " + variant.setting);
+        }
+        // Texture storage with hardware filtering: Vulkan only (a C++ build has no texture
+        // unit), compared with the shipped kernel (float32 buffer) on the same device.
+        const std::filesystem::path spirv = directory / "accuracy_kernel.spv";
+        const std::string texture_setting = "texture, 2D table hardware-filtered (lavapipe)";
+        if (!buffer_run.values.empty())
+        {
+            std::filesystem::remove(spirv);
+            const CompileResult texture_compile =
+                slang_compile(options.repository_root, {"OPENPBR_LUT_FILTERED_2D=1"}, spirv);
+            if (texture_compile.ok)
+            {
+                const LavapipeRun texture_run = run_on_lavapipe(*context, spirv, to_bytes(shipped_lut()), workload,
+                                                                std::uint32_t(compiled_lut_layout().size_2d));
+                add("table storage", texture_setting, "SPIR-V bytes", texture_compile.bytes,
+                    "Slang compile ms (wasm, spirv)", texture_compile.milliseconds);
+                add("table storage", texture_setting, "lavapipe per-query relative error vs lavapipe buffer (median)",
+                    percentile_relative_error(texture_run.values, buffer_run.values, 0.5), "lavapipe queries/s",
+                    texture_run.queries_per_second);
+                add("table storage", texture_setting,
+                    "lavapipe per-query relative error vs lavapipe buffer (99th percentile)",
+                    percentile_relative_error(texture_run.values, buffer_run.values), "lavapipe queries/s",
+                    texture_run.queries_per_second);
+                add("table storage", texture_setting, "lavapipe per-query relative error vs lavapipe buffer (max)",
+                    max_relative_error(texture_run.values, buffer_run.values), "lavapipe queries/s",
+                    texture_run.queries_per_second);
+                add("table storage", texture_setting, "lavapipe per-query relative error vs CPU shipped (99th percentile)",
+                    percentile_relative_error(texture_run.values, gpu_reference), "lavapipe queries/s",
+                    texture_run.queries_per_second);
+                add("table storage", "float32 buffer (lavapipe)",
+                    "lavapipe per-query relative error vs CPU shipped (99th percentile)",
+                    percentile_relative_error(buffer_run.values, gpu_reference), "lavapipe queries/s",
+                    buffer_run.queries_per_second);
+            }
+        }
+        else
+        {
+            std::cerr << "\nopenpbr bench accuracy: texture storage rows left out (no Vulkan device or no Slang)\n";
+        }
+        progress.step("slang + lavapipe: " + texture_setting);
     }
     return rows;
 }

@@ -3,19 +3,23 @@
 //
 // Every setting of every knob gets an error and a time:
 //   knobs   energy compensation (none / analytic fit / tables at 16, 32, 64), table storage
-//           (compiled-in array, 16-bit values), fast-math hooks, visible-normal sampling
-//           (Heitz 2018 / spherical caps / bounded VNDF), thin film (full / fast), baselines
+//           (compiled-in array, float32 buffer, 16-bit values, texture with hardware filtering on
+//           lavapipe), fast-math hooks, visible-normal sampling (Heitz 2018 / spherical caps /
+//           bounded VNDF), thin film (full / fast), precision (C++ float / double), baselines
 //           (bare real-time GGX with Schlick-Smith or height-correlated visibility, split-sum
 //           IBL with DFG tables at 4, 16, 64, 256 samples);
 //   errors  directional albedo against the microsurface random walk (host/microsurface.h,
 //           cached), max and mean over roughness x cos theta x F0 of a Schlick conductor (F0 in
 //           place of the IOR axis: the compensation is the same for every Fresnel); white
 //           furnace deviation (white metal and white glass); per-query relative error against
-//           the shipped build (fast math, thin film); the variance of the albedo estimator
-//           (sampling);
-//   times   CPU ns per prepare + eval and per prepare + sample (one thread, best of three runs),
+//           the shipped build and against the double-precision build (tools/make_double_headers.py);
+//           the variance of the albedo estimator (sampling); bit differences between array and
+//           buffer tables (must be 0);
+//   times   CPU ns per prepare + eval and per prepare + sample (one thread, the best of 15 rounds
+//           that each time every variant, best of three runs per round),
 //           and, with `compile`, the Slang compile time and SPIR-V size of the conformance kernel
-//           with the setting's defines.
+//           with the setting's defines and that kernel's queries/s on lavapipe (with its
+//           per-query error against the CPU build).
 // Output: {"rows": [{"knob", "setting", "error_metric", "error", "time_metric", "time"}]},
 // CSV with the same columns, and an SVG plot of albedo error against ns per eval on log axes
 // with the Pareto front.
@@ -39,8 +43,8 @@ struct AccuracyOptions
     std::uint32_t table_samples = 1u << 14;  // Monte Carlo samples per node of the 16/64 tables
     // Ground-truth and table cache, e.g. build/accuracy-cache; empty: no cache.
     std::filesystem::path cache_directory;
-    // Slang compile time and SPIR-V size per setting (needs node and the repository); off by
-    // default in quick mode.
+    // Slang compile time, SPIR-V size and lavapipe queries/s per setting (needs node, the
+    // repository and a Vulkan device); off in quick mode.
     bool compile = true;
     std::filesystem::path repository_root;  // for targets/slangc.mjs and the kernel, e.g. "."
     bool progress = true;  // progress bar on stderr

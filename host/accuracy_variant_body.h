@@ -16,20 +16,15 @@ namespace OPENPBR_CPP_VARIANT_NAMESPACE {
 inline ::openpbr::OPENPBR_CPP_VARIANT_NAMESPACE::OpenPBR_ResolvedInputs resolve(const AccuracyMaterial& material)
 {
     auto inputs = ::openpbr::OPENPBR_CPP_VARIANT_NAMESPACE::openpbr_make_default_resolved_inputs();
-    inputs.base_color = glm::vec3(material.base_color[0], material.base_color[1], material.base_color[2]);
-    inputs.base_metalness = material.base_metalness;
-    inputs.specular_roughness = material.specular_roughness;
-    inputs.specular_roughness_anisotropy = material.specular_roughness_anisotropy;
-    inputs.specular_ior = material.specular_ior;
-    inputs.transmission_weight = material.transmission_weight;
-    inputs.coat_weight = material.coat_weight;
-    inputs.coat_roughness = material.coat_roughness;
-    inputs.thin_film_weight = material.thin_film_weight;
-    inputs.thin_film_thickness = material.thin_film_thickness;
+    accuracy_apply_material(material, inputs);
     return inputs;
 }
 
-inline glm::vec3 to_vec3(const float* v) { return glm::vec3(v[0], v[1], v[2]); }
+// The dialect's vec3 in this variant: glm::vec3, or glm::dvec3 in the double-precision build
+// (host/accuracy_double_variant.cpp).
+using Vector3 = decltype(::openpbr::OPENPBR_CPP_VARIANT_NAMESPACE::OpenPBR_DiffuseSpecular{}.diffuse);
+
+inline Vector3 to_vec3(const float* v) { return Vector3(v[0], v[1], v[2]); }
 
 inline void eval(const std::vector<AccuracyMaterial>& materials, const std::vector<AccuracyQuery>& queries, float* out)
 {
@@ -39,10 +34,10 @@ inline void eval(const std::vector<AccuracyMaterial>& materials, const std::vect
         const AccuracyQuery& query = queries[i];
         const OpenPBR_PreparedBsdf bsdf = openpbr_prepare(resolve(materials[query.material]), to_vec3(query.view));
         const OpenPBR_DiffuseSpecular value = openpbr_eval(bsdf, to_vec3(query.light));
-        const glm::vec3 sum = value.diffuse + value.specular;
-        out[3 * i] = sum.x;
-        out[3 * i + 1] = sum.y;
-        out[3 * i + 2] = sum.z;
+        const Vector3 sum = value.diffuse + value.specular;
+        out[3 * i] = float(sum.x);
+        out[3 * i + 1] = float(sum.y);
+        out[3 * i + 2] = float(sum.z);
     }
 }
 
@@ -54,17 +49,17 @@ inline void sample(const std::vector<AccuracyMaterial>& materials, const std::ve
         const AccuracyQuery& query = queries[i];
         const OpenPBR_PreparedBsdf bsdf = openpbr_prepare(resolve(materials[query.material]), to_vec3(query.view));
         const OpenPBR_BsdfSample drawn = openpbr_sample(bsdf, to_vec3(query.u));
-        const glm::vec3 weight = drawn.pdf > 0.0f ? drawn.weight.diffuse + drawn.weight.specular : glm::vec3(0.0f);
-        out[3 * i] = weight.x;
-        out[3 * i + 1] = weight.y;
-        out[3 * i + 2] = weight.z;
+        const Vector3 weight = drawn.pdf > 0.0f ? drawn.weight.diffuse + drawn.weight.specular : Vector3(0.0f);
+        out[3 * i] = float(weight.x);
+        out[3 * i + 1] = float(weight.y);
+        out[3 * i + 2] = float(weight.z);
     }
 }
 
 inline AccuracyAlbedo albedo(const AccuracyMaterial& material, float mu, std::uint32_t samples, std::uint64_t seed)
 {
     using namespace ::openpbr::OPENPBR_CPP_VARIANT_NAMESPACE;
-    const glm::vec3 view(std::sqrt(std::max(0.0f, 1.0f - mu * mu)), 0.0f, mu);
+    const Vector3 view(std::sqrt(std::max(0.0f, 1.0f - mu * mu)), 0.0f, mu);
     const OpenPBR_PreparedBsdf bsdf = openpbr_prepare(resolve(material), view);
     // Roberts' R3 sequence (the generalized golden ratio, 1 / phi_3^k) with a random shift
     // from the seed: a low-discrepancy point set, so the mean converges far faster than with
@@ -79,19 +74,19 @@ inline AccuracyAlbedo albedo(const AccuracyMaterial& material, float mu, std::ui
     double luminance_squares = 0.0;
     for (std::uint32_t s = 0; s < samples; ++s)
     {
-        glm::vec3 u;
+        Vector3 u;
         for (int k = 0; k < 3; ++k)
         {
             const double value = shift[k] + step[k] * double(s);
             u[k] = float(value - std::floor(value));
         }
-        const OpenPBR_BsdfSample drawn = openpbr_sample(bsdf, glm::min(u, glm::vec3(0.99999994f)));
-        const glm::vec3 weight = drawn.pdf > 0.0f ? drawn.weight.diffuse + drawn.weight.specular : glm::vec3(0.0f);
+        const OpenPBR_BsdfSample drawn = openpbr_sample(bsdf, glm::min(u, Vector3(0.99999994f)));
+        const Vector3 weight = drawn.pdf > 0.0f ? drawn.weight.diffuse + drawn.weight.specular : Vector3(0.0f);
         for (int c = 0; c < 3; ++c)
         {
             sum[c] += weight[c];
         }
-        const double luminance = 0.2126 * weight.x + 0.7152 * weight.y + 0.0722 * weight.z;
+        const double luminance = 0.2126 * double(weight.x) + 0.7152 * double(weight.y) + 0.0722 * double(weight.z);
         luminance_sum += luminance;
         luminance_squares += luminance * luminance;
     }

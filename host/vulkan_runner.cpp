@@ -68,6 +68,12 @@ double median(std::vector<double> samples) {
                                    : 0.5 * (samples[middle - 1] + samples[middle]);
 }
 
+VkDescriptorType descriptor_type_of(const BindingLayout& layout) {
+    return layout.sampled_image ? VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER
+           : layout.uniform     ? VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER
+                                : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+}
+
 VkDeviceSize round_up(const VkDeviceSize value, const VkDeviceSize granule) {
     return (value + granule - 1) / granule * granule;
 }
@@ -531,8 +537,7 @@ ComputePipeline::ComputePipeline(const VulkanContext& context,
     for (const BindingLayout& binding : state.bindings) {
         VkDescriptorSetLayoutBinding layout_binding{};
         layout_binding.binding = binding.binding;
-        layout_binding.descriptorType = binding.uniform ? VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER
-                                                        : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+        layout_binding.descriptorType = descriptor_type_of(binding);
         layout_binding.descriptorCount = 1;
         layout_binding.stageFlags = VK_SHADER_STAGE_COMPUTE_BIT;
         layout_bindings.push_back(layout_binding);
@@ -610,6 +615,10 @@ struct MappedBuffer {
     VkDeviceMemory memory = VK_NULL_HANDLE;
     void* mapped = nullptr;
     VkDeviceSize size = 0;
+    // A sampled-image binding (BufferBinding::image_width > 0) has these instead of a buffer.
+    VkImage image = VK_NULL_HANDLE;
+    VkImageView view = VK_NULL_HANDLE;
+    VkSampler sampler = VK_NULL_HANDLE;
 };
 
 // Everything one run() creates, released in its destructor so that an exception anywhere
@@ -619,6 +628,7 @@ struct RunResources {
     std::vector<MappedBuffer> buffers;
     VkDescriptorPool descriptor_pool = VK_NULL_HANDLE;
     VkCommandBuffer command_buffer = VK_NULL_HANDLE;
+    VkCommandBuffer setup_command_buffer = VK_NULL_HANDLE;  // image layout transitions
     VkFence fence = VK_NULL_HANDLE;
     VkQueryPool query_pool = VK_NULL_HANDLE;
     bool submitted = false;
@@ -637,8 +647,14 @@ struct RunResources {
         if (command_buffer != VK_NULL_HANDLE) {
             vkFreeCommandBuffers(device, context.command_pool, 1, &command_buffer);
         }
+        if (setup_command_buffer != VK_NULL_HANDLE) {
+            vkFreeCommandBuffers(device, context.command_pool, 1, &setup_command_buffer);
+        }
         if (descriptor_pool != VK_NULL_HANDLE) vkDestroyDescriptorPool(device, descriptor_pool, nullptr);
         for (const MappedBuffer& buffer : buffers) {
+            if (buffer.sampler != VK_NULL_HANDLE) vkDestroySampler(device, buffer.sampler, nullptr);
+            if (buffer.view != VK_NULL_HANDLE) vkDestroyImageView(device, buffer.view, nullptr);
+            if (buffer.image != VK_NULL_HANDLE) vkDestroyImage(device, buffer.image, nullptr);
             if (buffer.buffer != VK_NULL_HANDLE) vkDestroyBuffer(device, buffer.buffer, nullptr);
             // Freeing mapped memory unmaps it implicitly.
             if (buffer.memory != VK_NULL_HANDLE) vkFreeMemory(device, buffer.memory, nullptr);
@@ -660,6 +676,80 @@ uint32_t find_host_memory_type(const ContextState& context, const uint32_t allow
     throw std::runtime_error("no HOST_VISIBLE | HOST_COHERENT memory type for a buffer");
 }
 
+// A sampled-image binding: a linear-tiled R32_SFLOAT image in host-visible memory written row
+// by row (at the driver's row pitch), its view and a bilinear clamp-to-edge sampler. Linear
+// tiling keeps the runner free of staging copies, as for buffers. The image is left in
+// VK_IMAGE_LAYOUT_PREINITIALIZED; run() moves it to SHADER_READ_ONLY_OPTIMAL.
+void create_sampled_image(const ContextState& context, const BufferBinding& binding, MappedBuffer& target) {
+    const VkDevice device = context.device;
+    const VkFormat format = VK_FORMAT_R32_SFLOAT;
+    const std::size_t row_bytes = std::size_t(binding.image_width) * sizeof(float);
+    const std::string where = "run: image at binding " + std::to_string(binding.binding);
+    if (binding.image_height == 0 || binding.data == nullptr ||
+        binding.data->size() != row_bytes * binding.image_height) {
+        throw std::runtime_error(where + " needs " + std::to_string(binding.image_width) + " x " +
+                                 std::to_string(binding.image_height) + " floats of data");
+    }
+    VkFormatProperties format_properties{};
+    vkGetPhysicalDeviceFormatProperties(context.physical_device, format, &format_properties);
+    const VkFormatFeatureFlags needed =
+        VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT | VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT;
+    if ((format_properties.linearTilingFeatures & needed) != needed) {
+        throw std::runtime_error(where + ": the device cannot sample linear-tiled R32_SFLOAT images "
+                                 "with bilinear filtering");
+    }
+    VkImageCreateInfo image_info{};
+    image_info.sType = VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO;
+    image_info.imageType = VK_IMAGE_TYPE_2D;
+    image_info.format = format;
+    image_info.extent = {binding.image_width, binding.image_height, 1};
+    image_info.mipLevels = 1;
+    image_info.arrayLayers = 1;
+    image_info.samples = VK_SAMPLE_COUNT_1_BIT;
+    image_info.tiling = VK_IMAGE_TILING_LINEAR;
+    image_info.usage = VK_IMAGE_USAGE_SAMPLED_BIT;
+    image_info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
+    image_info.initialLayout = VK_IMAGE_LAYOUT_PREINITIALIZED;
+    check(vkCreateImage(device, &image_info, nullptr, &target.image), "vkCreateImage");
+
+    VkMemoryRequirements requirements{};
+    vkGetImageMemoryRequirements(device, target.image, &requirements);
+    VkMemoryAllocateInfo allocate_info{};
+    allocate_info.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO;
+    allocate_info.allocationSize = requirements.size;
+    allocate_info.memoryTypeIndex = find_host_memory_type(context, requirements.memoryTypeBits);
+    check(vkAllocateMemory(device, &allocate_info, nullptr, &target.memory), "vkAllocateMemory");
+    check(vkBindImageMemory(device, target.image, target.memory, 0), "vkBindImageMemory");
+    check(vkMapMemory(device, target.memory, 0, VK_WHOLE_SIZE, 0, &target.mapped), "vkMapMemory");
+    target.size = requirements.size;
+
+    const VkImageSubresource subresource{VK_IMAGE_ASPECT_COLOR_BIT, 0, 0};
+    VkSubresourceLayout layout{};
+    vkGetImageSubresourceLayout(device, target.image, &subresource, &layout);
+    for (uint32_t row = 0; row < binding.image_height; ++row) {
+        std::memcpy(static_cast<std::byte*>(target.mapped) + layout.offset + row * layout.rowPitch,
+                    binding.data->data() + row * row_bytes, row_bytes);
+    }
+
+    VkImageViewCreateInfo view_info{};
+    view_info.sType = VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO;
+    view_info.image = target.image;
+    view_info.viewType = VK_IMAGE_VIEW_TYPE_2D;
+    view_info.format = format;
+    view_info.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+    check(vkCreateImageView(device, &view_info, nullptr, &target.view), "vkCreateImageView");
+
+    VkSamplerCreateInfo sampler_info{};
+    sampler_info.sType = VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO;
+    sampler_info.magFilter = VK_FILTER_LINEAR;
+    sampler_info.minFilter = VK_FILTER_LINEAR;
+    sampler_info.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
+    sampler_info.addressModeU = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+    sampler_info.addressModeV = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+    sampler_info.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+    check(vkCreateSampler(device, &sampler_info, nullptr, &target.sampler), "vkCreateSampler");
+}
+
 void check_buffers_match_pipeline(const PipelineState& pipeline,
                                   const std::vector<BufferBinding>& buffers) {
     std::vector<BindingLayout> given = binding_layouts_of(buffers);
@@ -669,14 +759,15 @@ void check_buffers_match_pipeline(const PipelineState& pipeline,
         std::string text;
         for (const BindingLayout& layout : layouts) {
             text += (text.empty() ? "" : ", ") + std::to_string(layout.binding) +
-                    (layout.uniform ? " uniform" : " storage");
+                    (layout.sampled_image ? " sampled image" : layout.uniform ? " uniform" : " storage");
         }
         return "[" + text + "]";
     };
     const bool same = given.size() == pipeline.bindings.size() &&
                       std::equal(given.begin(), given.end(), pipeline.bindings.begin(),
                                  [](const BindingLayout& a, const BindingLayout& b) {
-                                     return a.binding == b.binding && a.uniform == b.uniform;
+                                     return a.binding == b.binding && a.uniform == b.uniform &&
+                                            a.sampled_image == b.sampled_image;
                                  });
     if (!same) {
         throw std::runtime_error("run: buffers " + describe(given) +
@@ -690,7 +781,9 @@ void check_buffers_match_pipeline(const PipelineState& pipeline,
 std::vector<BindingLayout> binding_layouts_of(const std::vector<BufferBinding>& buffers) {
     std::vector<BindingLayout> layouts;
     layouts.reserve(buffers.size());
-    for (const BufferBinding& buffer : buffers) layouts.push_back({buffer.binding, buffer.uniform});
+    for (const BufferBinding& buffer : buffers) {
+        layouts.push_back({buffer.binding, buffer.uniform, buffer.image_width > 0});
+    }
     return layouts;
 }
 
@@ -732,6 +825,10 @@ DispatchTiming run(ComputePipeline& pipeline, const std::vector<BufferBinding>& 
     for (std::size_t index = 0; index < buffers.size(); ++index) {
         const BufferBinding& binding = buffers[index];
         MappedBuffer& target = resources.buffers[index];
+        if (binding.image_width > 0) {
+            create_sampled_image(context, binding, target);
+            continue;
+        }
         const VkDeviceSize data_size = binding.data != nullptr ? binding.data->size() : 0;
         target.size = std::max(minimum_buffer_size, round_up(data_size, buffer_size_granule));
         const VkDeviceSize range_limit =
@@ -774,8 +871,12 @@ DispatchTiming run(ComputePipeline& pipeline, const std::vector<BufferBinding>& 
     if (!buffers.empty()) {
         uint32_t storage_count = 0;
         uint32_t uniform_count = 0;
-        for (const BufferBinding& binding : buffers) ++(binding.uniform ? uniform_count : storage_count);
+        uint32_t image_count = 0;
+        for (const BufferBinding& binding : buffers) {
+            ++(binding.image_width > 0 ? image_count : binding.uniform ? uniform_count : storage_count);
+        }
         std::vector<VkDescriptorPoolSize> pool_sizes;
+        if (image_count > 0) pool_sizes.push_back({VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, image_count});
         if (storage_count > 0) pool_sizes.push_back({VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, storage_count});
         if (uniform_count > 0) pool_sizes.push_back({VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, uniform_count});
         VkDescriptorPoolCreateInfo pool_info{};
@@ -794,17 +895,24 @@ DispatchTiming run(ComputePipeline& pipeline, const std::vector<BufferBinding>& 
         check(vkAllocateDescriptorSets(device, &set_info, &descriptor_set), "vkAllocateDescriptorSets");
 
         std::vector<VkDescriptorBufferInfo> buffer_infos(buffers.size());
+        std::vector<VkDescriptorImageInfo> image_infos(buffers.size());
         std::vector<VkWriteDescriptorSet> writes(buffers.size());
+        const std::vector<BindingLayout> layouts = binding_layouts_of(buffers);
         for (std::size_t index = 0; index < buffers.size(); ++index) {
-            buffer_infos[index] = {resources.buffers[index].buffer, 0, resources.buffers[index].size};
+            const MappedBuffer& resource = resources.buffers[index];
             VkWriteDescriptorSet& write = writes[index];
             write.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;
             write.dstSet = descriptor_set;
             write.dstBinding = buffers[index].binding;
             write.descriptorCount = 1;
-            write.descriptorType = buffers[index].uniform ? VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER
-                                                          : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-            write.pBufferInfo = &buffer_infos[index];
+            write.descriptorType = descriptor_type_of(layouts[index]);
+            if (layouts[index].sampled_image) {
+                image_infos[index] = {resource.sampler, resource.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+                write.pImageInfo = &image_infos[index];
+            } else {
+                buffer_infos[index] = {resource.buffer, 0, resource.size};
+                write.pBufferInfo = &buffer_infos[index];
+            }
         }
         vkUpdateDescriptorSets(device, static_cast<uint32_t>(writes.size()), writes.data(), 0, nullptr);
     }
@@ -865,6 +973,42 @@ DispatchTiming run(ComputePipeline& pipeline, const std::vector<BufferBinding>& 
     fence_info.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO;
     check(vkCreateFence(device, &fence_info, nullptr, &resources.fence), "vkCreateFence");
 
+    // Images leave PREINITIALIZED (written by the host) for SHADER_READ_ONLY_OPTIMAL once, in a
+    // submission of their own: the dispatch command buffer is submitted `repeats` times and
+    // must not repeat a transition out of a layout the image has already left.
+    std::vector<VkImageMemoryBarrier> image_barriers;
+    for (const MappedBuffer& resource : resources.buffers) {
+        if (resource.image == VK_NULL_HANDLE) continue;
+        VkImageMemoryBarrier barrier{};
+        barrier.sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER;
+        barrier.srcAccessMask = VK_ACCESS_HOST_WRITE_BIT;
+        barrier.dstAccessMask = VK_ACCESS_SHADER_READ_BIT;
+        barrier.oldLayout = VK_IMAGE_LAYOUT_PREINITIALIZED;
+        barrier.newLayout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+        barrier.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+        barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+        barrier.image = resource.image;
+        barrier.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+        image_barriers.push_back(barrier);
+    }
+    if (!image_barriers.empty()) {
+        check(vkAllocateCommandBuffers(device, &command_info, &resources.setup_command_buffer),
+              "vkAllocateCommandBuffers");
+        check(vkBeginCommandBuffer(resources.setup_command_buffer, &begin_info), "vkBeginCommandBuffer");
+        vkCmdPipelineBarrier(resources.setup_command_buffer, VK_PIPELINE_STAGE_HOST_BIT,
+                             VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 0, nullptr, 0, nullptr,
+                             static_cast<uint32_t>(image_barriers.size()), image_barriers.data());
+        check(vkEndCommandBuffer(resources.setup_command_buffer), "vkEndCommandBuffer");
+        VkSubmitInfo setup_submit{};
+        setup_submit.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO;
+        setup_submit.commandBufferCount = 1;
+        setup_submit.pCommandBuffers = &resources.setup_command_buffer;
+        check(vkQueueSubmit(context.queue, 1, &setup_submit, resources.fence), "vkQueueSubmit");
+        resources.submitted = true;
+        check(vkWaitForFences(device, 1, &resources.fence, VK_TRUE, UINT64_MAX), "vkWaitForFences");
+        check(vkResetFences(device, 1, &resources.fence), "vkResetFences");
+    }
+
     VkSubmitInfo submit_info{};
     submit_info.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO;
     submit_info.commandBufferCount = 1;
@@ -909,7 +1053,7 @@ DispatchTiming run(ComputePipeline& pipeline, const std::vector<BufferBinding>& 
     const Clock::time_point readback_start = Clock::now();
     for (std::size_t index = 0; index < buffers.size(); ++index) {
         const BufferBinding& binding = buffers[index];
-        if (binding.read_back && binding.data != nullptr && !binding.data->empty()) {
+        if (binding.read_back && binding.image_width == 0 && binding.data != nullptr && !binding.data->empty()) {
             std::memcpy(binding.data->data(), resources.buffers[index].mapped, binding.data->size());
         }
     }

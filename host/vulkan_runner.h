@@ -62,12 +62,19 @@ struct BufferBinding {
     bool read_back = false;
     // Uniform buffer instead of storage buffer (must match the pipeline's layout).
     bool uniform = false;
+    // Non-zero: not a buffer but a 2D single-channel float image (VK_FORMAT_R32_SFLOAT) of
+    // image_width x image_height texels, row by row in *data, bound as a combined image sampler
+    // with bilinear filtering and clamp-to-edge addressing (e.g. a table read with hardware
+    // filtering, OPENPBR_LUT_FILTERED_2D). Never read back.
+    uint32_t image_width = 0;
+    uint32_t image_height = 0;
 };
 
 // The descriptor layout of one binding, as the pipeline is created with it.
 struct BindingLayout {
     uint32_t binding = 0;
     bool uniform = false;
+    bool sampled_image = false;  // a combined image sampler (BufferBinding::image_width > 0)
 };
 
 // A specialization constant as its 32-bit pattern. Every scalar kind that GLSL/Slang allow

@@ -207,6 +207,33 @@ inline const float* openpbr_lut_data = nullptr;
 #error "OPENPBR_LUT_MODE_TEXTURE needs OPENPBR_LUT_FETCH(index) defined before including openpbr_lut.h"
 #endif
 
+// Hardware-filtered 2D table, e.g. -DOPENPBR_LUT_FILTERED_2D=1 (Slang on Vulkan; default 0):
+// table 0 (E_ggx, read by every microfacet lobe's compensation) as an N x N single-channel
+// float texture at OPENPBR_LUT_TEXTURE_BINDING (default 6) of set 0, a combined image sampler
+// with bilinear filtering and clamp-to-edge addressing (host/vulkan_runner.h image bindings);
+// the other tables stay where the storage mode puts them. Texel i holds node i, so node
+// coordinate f in [0, N - 1] lies at texture coordinate (f + 0.5) / N, where bilinear
+// filtering blends nodes floor(f) and floor(f) + 1 by fract(f): openpbr_lut_2d's arithmetic in
+// the texture unit, with the blend weight rounded to the sampler's sub-texel precision
+// (Vulkan's subTexelPrecisionBits, 8 on lavapipe). The accuracy study measures what that costs.
+#ifndef OPENPBR_LUT_FILTERED_2D
+#define OPENPBR_LUT_FILTERED_2D 0
+#endif
+#ifndef OPENPBR_LUT_TEXTURE_BINDING
+#define OPENPBR_LUT_TEXTURE_BINDING 6
+#endif
+#if OPENPBR_LUT_FILTERED_2D
+#if defined(OPENPBR_LANGUAGE_TARGET_SLANG)
+[[vk::binding(OPENPBR_LUT_TEXTURE_BINDING, 0)]] Sampler2D<float> openpbr_lut_texture_2d;
+#define OPENPBR_LUT_SAMPLE_2D(fx, fy)                                                     \
+    openpbr_lut_texture_2d.SampleLevel(float2(((fx) + 0.5f) / float(OPENPBR_LUT_2D_SIZE), \
+                                              ((fy) + 0.5f) / float(OPENPBR_LUT_2D_SIZE)), \
+                                       0.0f)
+#else
+#error "OPENPBR_LUT_FILTERED_2D is available for Slang (Vulkan) only"
+#endif
+#endif
+
 OPENPBR_NAMESPACE_BEGIN
 
 OPENPBR_FUNC float openpbr_lut_eta_coordinate(float eta)
@@ -262,6 +289,11 @@ OPENPBR_FUNC float openpbr_lut_2d(int offset, float mu, float r)
     const float scale = float(OPENPBR_LUT_2D_SIZE - 1);
     const float fx = clamp(mu, 0.0f, 1.0f) * scale;
     const float fy = clamp(r, 0.0f, 1.0f) * scale;
+#if OPENPBR_LUT_FILTERED_2D
+    // Table 0 is the only 2D table, so the offset is implied by the texture.
+    OPENPBR_UNUSED(offset);
+    return OPENPBR_LUT_SAMPLE_2D(fx, fy);
+#else
     const int x0 = min(int(fx), OPENPBR_LUT_2D_SIZE - 2);
     const int y0 = min(int(fy), OPENPBR_LUT_2D_SIZE - 2);
     const float tx = fx - float(x0);
@@ -272,6 +304,7 @@ OPENPBR_FUNC float openpbr_lut_2d(int offset, float mu, float r)
     const float v01 = OPENPBR_LUT_FETCH(base + OPENPBR_LUT_2D_SIZE);
     const float v11 = OPENPBR_LUT_FETCH(base + OPENPBR_LUT_2D_SIZE + 1);
     return mix(mix(v00, v10, tx), mix(v01, v11, tx), ty);
+#endif
 }
 
 // Bilinear look-up in the eta slice z of a 3D table: index = offset + (z * N + r_index) * N +

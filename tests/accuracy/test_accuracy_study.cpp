@@ -59,7 +59,7 @@ TEST_P(AccuracyKnob, HasRows)
 
 INSTANTIATE_TEST_SUITE_P(Knobs, AccuracyKnob,
                          testing::Values("shipped", "compensation", "table storage", "fast math", "vndf sampling",
-                                         "thin film", "baseline"),
+                                         "thin film", "precision", "baseline"),
                          [](const testing::TestParamInfo<std::string>& info) {
                              std::string name = info.param;
                              for (char& c : name)
@@ -101,6 +101,43 @@ TEST(AccuracyStudy, FastMathStaysWithinItsTolerance)
         }
     }
     EXPECT_TRUE(found);
+}
+
+// Array and buffer mode read the same floats with the same arithmetic (slang/openpbr_lut.h), so
+// the float32 buffer variant's eval and sample outputs equal the shipped (array) build's bit for
+// bit.
+TEST(AccuracyStudy, BufferTablesAreBitIdenticalToTheArray)
+{
+    bool found = false;
+    for (const auto& row : quick_rows())
+    {
+        if (row.error_metric == "eval + sample outputs differing in bits from the array build (count)")
+        {
+            found = true;
+            EXPECT_EQ(row.error, 0.0) << row.setting;
+        }
+    }
+    EXPECT_TRUE(found);
+}
+
+// The float build agrees with the double-precision build (tools/make_double_headers.py) to float
+// rounding on typical queries: median relative difference below 1e-5 (float epsilon 6e-8 times
+// the few hundred operations of a prepare + eval), and the double build differs from the float
+// one at all (it is not the float build by mistake).
+TEST(AccuracyStudy, FloatAgreesWithDouble)
+{
+    double median = -1.0;
+    for (const auto& row : quick_rows())
+    {
+        if (row.knob == "precision" && row.setting == "C++ float (shipped)" &&
+            row.error_metric == "per-query relative error vs C++ double (median)")
+        {
+            median = row.error;
+        }
+    }
+    ASSERT_GE(median, 0.0);
+    EXPECT_LT(median, 1e-5);
+    EXPECT_GT(median, 0.0);
 }
 
 // The study's own sanity: the shipped build conserves energy in the white furnace and is more

@@ -102,7 +102,8 @@ INSTANTIATE_TEST_SUITE_P(AllOrders, LosslessWalk,
                          case_name);
 
 // The shipped tables of slang/openpbr_lut.h against the walk of one bounce, at points between
-// the table nodes too (interpolation error included): within 1 % absolute albedo.
+// the table nodes too (interpolation error included): within 1 % absolute albedo (from below
+// only for E_R inside a medium, eta < 1, where the look-up rounds up; see the test).
 struct TableCase
 {
     int table;  // 0: E_ggx, 1: E_R
@@ -126,7 +127,17 @@ TEST_P(ShippedTables, AgreeWithTheRandomWalk)
     const auto walk = openpbr::host::microsurface_albedo(material, c.mu, 1, 1u << 17, 3);
     const float table = c.table == 0 ? openpbr::openpbr_ggx_albedo(float(c.mu), float(alpha))
                                      : openpbr::openpbr_dielectric_reflection_albedo(float(c.mu), float(alpha), float(c.eta));
-    EXPECT_NEAR(table, walk.reflected, 0.01) << "walk standard error " << walk.reflected_error;
+    if (c.table == 1 && c.eta < 1.0)
+    {
+        // Below eta = 1 the look-up may round E_R up to the larger bracketing node along eta
+        // (slang/openpbr_lut.h, openpbr_lut_3d: total internal reflection sets in within a
+        // cell, and E_R read too high can only lose energy), so there it is a bound from above.
+        EXPECT_GE(table, walk.reflected - 0.01) << "walk standard error " << walk.reflected_error;
+    }
+    else
+    {
+        EXPECT_NEAR(table, walk.reflected, 0.01) << "walk standard error " << walk.reflected_error;
+    }
 }
 
 std::vector<TableCase> table_cases()
