@@ -676,6 +676,17 @@ uint32_t find_host_memory_type(const ContextState& context, const uint32_t allow
     throw std::runtime_error("no HOST_VISIBLE | HOST_COHERENT memory type for a buffer");
 }
 
+// Host-visible, coherent memory for one buffer or image (the same path for both); the caller
+// binds it (vkBindBufferMemory / vkBindImageMemory) and maps it.
+void allocate_mapped_memory(const ContextState& context, const VkMemoryRequirements& requirements,
+                            MappedBuffer& target) {
+    VkMemoryAllocateInfo allocate_info{};
+    allocate_info.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO;
+    allocate_info.allocationSize = requirements.size;
+    allocate_info.memoryTypeIndex = find_host_memory_type(context, requirements.memoryTypeBits);
+    check(vkAllocateMemory(context.device, &allocate_info, nullptr, &target.memory), "vkAllocateMemory");
+}
+
 // A sampled-image binding: a linear-tiled R32_SFLOAT image in host-visible memory written row
 // by row (at the driver's row pitch), its view and a bilinear clamp-to-edge sampler. Linear
 // tiling keeps the runner free of staging copies, as for buffers. The image is left in
@@ -714,11 +725,7 @@ void create_sampled_image(const ContextState& context, const BufferBinding& bind
 
     VkMemoryRequirements requirements{};
     vkGetImageMemoryRequirements(device, target.image, &requirements);
-    VkMemoryAllocateInfo allocate_info{};
-    allocate_info.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO;
-    allocate_info.allocationSize = requirements.size;
-    allocate_info.memoryTypeIndex = find_host_memory_type(context, requirements.memoryTypeBits);
-    check(vkAllocateMemory(device, &allocate_info, nullptr, &target.memory), "vkAllocateMemory");
+    allocate_mapped_memory(context, requirements, target);
     check(vkBindImageMemory(device, target.image, target.memory, 0), "vkBindImageMemory");
     check(vkMapMemory(device, target.memory, 0, VK_WHOLE_SIZE, 0, &target.mapped), "vkMapMemory");
     target.size = requirements.size;
@@ -850,11 +857,7 @@ DispatchTiming run(ComputePipeline& pipeline, const std::vector<BufferBinding>& 
 
         VkMemoryRequirements requirements{};
         vkGetBufferMemoryRequirements(device, target.buffer, &requirements);
-        VkMemoryAllocateInfo allocate_info{};
-        allocate_info.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO;
-        allocate_info.allocationSize = requirements.size;
-        allocate_info.memoryTypeIndex = find_host_memory_type(context, requirements.memoryTypeBits);
-        check(vkAllocateMemory(device, &allocate_info, nullptr, &target.memory), "vkAllocateMemory");
+        allocate_mapped_memory(context, requirements, target);
         check(vkBindBufferMemory(device, target.buffer, target.memory, 0), "vkBindBufferMemory");
         check(vkMapMemory(device, target.memory, 0, VK_WHOLE_SIZE, 0, &target.mapped), "vkMapMemory");
 
