@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <fstream>
 #include <map>
 #include <random>
 #include <sstream>
@@ -431,6 +432,15 @@ ConformanceReport run_conformance(const std::vector<Material>& materials, const 
     for (const float value : cpu_results)
     {
         report.cpu_nonfinite += std::isfinite(value) ? 0 : 1;
+    }
+    if (!options.cpu_dump_path.empty())
+    {
+        std::ofstream dump(options.cpu_dump_path, std::ios::binary);
+        dump.write(reinterpret_cast<const char*>(cpu_results.data()), std::streamsize(cpu_results.size() * sizeof(float)));
+        if (!dump)
+        {
+            throw std::runtime_error("cannot write " + options.cpu_dump_path);
+        }
     }
 
     std::vector<std::string> wanted = options.paths.empty() ? known_conformance_paths() : options.paths;

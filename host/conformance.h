@@ -26,6 +26,9 @@ struct ConformanceOptions
     // One pipeline per toggle set the materials need (host/features.h) instead of the full
     // pipeline, e.g. true for `openpbr conformance --specialize`.
     bool specialize = false;
+    // Raw CPU results (float32, OPENPBR_RESULT_FLOATS per query), e.g. "cpu.f32" to compare two
+    // builds bit for bit; empty writes nothing.
+    std::string cpu_dump_path;
 };
 
 // Per GPU path, the comparison against the CPU build.

@@ -81,6 +81,8 @@ int main(int argc, char** argv)
     conformance->add_option("--json", conformance_json, "write the report as JSON");
     conformance->add_option("--paths", conformance_options.paths, "GPU paths to run (default: all)");
     conformance->add_option("--materials", material_files, "material files (default: the materials directory)");
+    conformance->add_option("--dump-cpu", conformance_options.cpu_dump_path,
+                            "write the CPU results as raw float32, e.g. cpu.f32 (bit-for-bit comparisons)");
     conformance->add_flag("--validation", validation, "enable Vulkan validation layers");
     conformance->add_flag("--specialize", conformance_options.specialize,
                           "one pipeline per feature-toggle set the materials need (default: the full pipeline)");
