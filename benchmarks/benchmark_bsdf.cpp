@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "host/material_library.h"
+#include "host/scene/material_library.h"
 #include "slang/openpbr.h"
 
 namespace {

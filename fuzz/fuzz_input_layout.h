@@ -1,5 +1,5 @@
 // The byte layout of one input of fuzz/fuzz_bsdf.cpp, shared with the seed-corpus writer
-// (host/stability.cpp, `openpbr stability --write-fuzz-corpus DIR`): little-endian floats,
+// (host/checks/stability.cpp, `openpbr stability --write-fuzz-corpus DIR`): little-endian floats,
 //   [0, 80)   the packed material (slang/openpbr_material_packing.h, OPENPBR_PACKED_MATERIAL_FLOATS)
 //   [80, 83)  view direction, world space, as given to openpbr_prepare
 //   [83, 86)  light direction (the harness normalizes it; eval and pdf take unit directions)

@@ -10,7 +10,7 @@
 //     still skips the work at run time.
 // A material that needs an effect the pipeline switched off would render without it, so hosts
 // check openpbr_required_feature_mask(material) against the pipeline's mask first
-// (host/features.h refuses with the material and feature named).
+// (host/scene/features.h refuses with the material and feature named).
 //
 // Toggle (spec constant name, stable SPIR-V constant_id / Metal function_constant index):
 //   EnableCoat          0  coat_weight -> 0                      (spec "Coat")
@@ -31,7 +31,7 @@
 // How each language gets its constants (the interop backend defines
 // OPENPBR_DECLARE_SPECIALIZATION_CONSTANT(name) and OPENPBR_GET_SPECIALIZATION_CONSTANT(name)):
 //   Slang -> SPIR-V, GLSL: [vk::constant_id(id)] / layout(constant_id = id) const bool, set
-//       through VkSpecializationInfo (host/features.h builds the map entries).
+//       through VkSpecializationInfo (host/scene/features.h builds the map entries).
 //   Metal: [[function_constant(id)]], set through MTLFunctionConstantValues; undefined = on.
 //   HLSL, CUDA (and Slang when it emits them, -DOPENPBR_SPECIALIZATION_CONSTANTS=0): no spec
 //       constants (Slang would turn them into uniforms, which fold nothing); compile-time

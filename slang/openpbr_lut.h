@@ -46,7 +46,7 @@
 #endif
 
 // Smallest view cosine the tables hold, e.g. 1e-4: the generator's floor (minimum_mu in
-// host/lut_generator.cpp); openpbr_prepare raises closer-to-grazing views to it.
+// host/tables/lut_generator.cpp); openpbr_prepare raises closer-to-grazing views to it.
 #define OPENPBR_LUT_MIN_VIEW_COSINE 1e-4f
 // The 4D table: OPENPBR_LUT_4D_SIZE nodes on its mu and roughness axes and
 // OPENPBR_LUT_4D_ANISOTROPY_SIZE on its anisotropy and azimuth axes, e.g. 16 x 16 x 10 x 10.
@@ -210,7 +210,7 @@ inline const float* openpbr_lut_data = nullptr;
 // Hardware-filtered 2D table, e.g. -DOPENPBR_LUT_FILTERED_2D=1 (Slang on Vulkan; default 0):
 // table 0 (E_ggx, read by every microfacet lobe's compensation) as an N x N single-channel
 // float texture at OPENPBR_LUT_TEXTURE_BINDING (default 6) of set 0, a combined image sampler
-// with bilinear filtering and clamp-to-edge addressing (host/vulkan_runner.h image bindings);
+// with bilinear filtering and clamp-to-edge addressing (host/gpu/vulkan_runner.h image bindings);
 // the other tables stay where the storage mode puts them. Texel i holds node i, so node
 // coordinate f in [0, N - 1] lies at texture coordinate (f + 0.5) / N, where bilinear
 // filtering blends nodes floor(f) and floor(f) + 1 by fract(f): openpbr_lut_2d's arithmetic in
@@ -258,7 +258,7 @@ OPENPBR_FUNC float openpbr_lut_anisotropy_coordinate(float anisotropy) { return 
 // simplifies without cancellation to
 //   c_phi = cos^2 phi (S(1) + S(b)) (S(1) + 1) / ((S(q) + S(b)) (S(q) + 1)),
 // which tends to cos^2 phi where the masking no longer depends on phi (mu -> 1 or a -> 0).
-// The floors of mu and alpha are the generator's (host/lut_generator.cpp).
+// The floors of mu and alpha are the generator's (host/tables/lut_generator.cpp).
 OPENPBR_FUNC float openpbr_lut_azimuth_coordinate(float mu, float roughness, float anisotropy, float cos_phi_squared)
 {
     const float b = 1.0f - clamp(anisotropy, 0.0f, 1.0f);

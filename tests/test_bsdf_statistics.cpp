@@ -2,12 +2,12 @@
 // sphere), pdf normalization, weight == eval / pdf, white furnace and per-lobe reciprocity.
 //
 // Data-driven: a new material configuration is one entry of material_configs() (or of
-// host::white_furnace_configs() in host/furnace.cpp, shared with `openpbr furnace`); a new
+// host::white_furnace_configs() in host/checks/furnace.cpp, shared with `openpbr furnace`); a new
 // lobe is one entry of reciprocity_cases(). Every configuration is tested at each view cosine
 // of kViewCosines, on the sides it lists (outside: view above the geometric normal; inside:
 // below it) and for each IOR variant (e.g. eta and 1/eta for transmission).
 #include "tests/statistical/bsdf_statistics.h"
-#include "host/furnace.h"
+#include "host/checks/furnace.h"
 
 #include <gtest/gtest.h>
 
@@ -352,7 +352,7 @@ INSTANTIATE_TEST_SUITE_P(Configurations, BsdfStatistics, ::testing::ValuesIn(sta
 // ------------------------------------------------------------------------------------------
 // White furnace
 
-// The configurations and tolerances are host/furnace.h's, shared with `openpbr furnace`.
+// The configurations and tolerances are host/checks/furnace.h's, shared with `openpbr furnace`.
 constexpr double kFurnaceTargetError = 5e-4;
 
 struct FurnaceCase

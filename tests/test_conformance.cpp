@@ -2,8 +2,8 @@
 // foundation issue (max relative error 1e-3, 99.9th percentile 1e-5, lobe agreement 99.9 %).
 #include <gtest/gtest.h>
 
-#include "host/conformance.h"
-#include "host/material_library.h"
+#include "host/checks/conformance.h"
+#include "host/scene/material_library.h"
 
 namespace {
 

@@ -1,5 +1,5 @@
 // Tests of the fuzz lobe (slang/lobes/openpbr_fuzz_lobe.h) and of its reference simulation and
-// LTC fit (host/fuzz_fit.h). Include directory: the repository root. Optional
+// LTC fit (host/tables/fuzz_fit.h). Include directory: the repository root. Optional
 // OPENPBR_GENERATED_DIR (a string literal, e.g. "/repo/slang/generated"): also checks that the
 // shipped .inc and .bin files hold the table compiled into this build.
 // Statistical tests use fixed seeds; the chi-square tests share a family-wise significance of
@@ -14,7 +14,7 @@
 #include <random>
 #include <vector>
 
-#include "host/fuzz_fit.h"
+#include "host/tables/fuzz_fit.h"
 #include "slang/lobes/openpbr_fuzz_lobe.h"
 
 namespace {

@@ -3,7 +3,7 @@
 // the albedo integrals, determinism, half rounding and the file formats.
 // Needs OPENPBR_LUT_BIN_PATH and OPENPBR_LUT_INC_PATH (string literals: the shipped
 // slang/generated/openpbr_lut.bin and openpbr_lut_values.inc).
-#include "host/lut_generator.h"
+#include "host/tables/lut_generator.h"
 
 #include "slang/math/openpbr_fresnel.h"
 #include "slang/math/openpbr_ggx.h"

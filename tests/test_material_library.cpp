@@ -1,6 +1,6 @@
 // Tests for host/material_library: the specification's defaults, the bundled example materials
 // and the loader's errors. Needs OPENPBR_MATERIALS_DIR (a string literal: the materials folder).
-#include "host/material_library.h"
+#include "host/scene/material_library.h"
 
 #include <gtest/gtest.h>
 

@@ -10,12 +10,12 @@
 #include <optional>
 #include <stdexcept>
 
-#include "host/compile_targets.h"
-#include "host/conformance.h"
-#include "host/cuda_conformance.h"
-#include "host/material_library.h"
-#include "host/shipped_tables.h"
-#include "host/vulkan_runner.h"
+#include "host/gpu/compile_targets.h"
+#include "host/checks/conformance.h"
+#include "host/gpu/cuda_conformance.h"
+#include "host/scene/material_library.h"
+#include "host/gpu/shipped_tables.h"
+#include "host/gpu/vulkan_runner.h"
 #include "slang/openpbr.h"
 
 namespace {

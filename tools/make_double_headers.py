@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Derives a double-precision copy of the single-source BSDF headers for the C++ build.
 
-The accuracy study (host/accuracy.h, docs/accuracy-vs-time.md) compares every setting with the
+The accuracy study (host/studies/accuracy.h, docs/accuracy-vs-time.md) compares every setting with the
 BSDF evaluated in double precision. The dialect (slang/, interop/) writes `float`, f-suffixed
 literals and vecN / matN, and GLM's double vectors accept only double scalars, so the unchanged
 source cannot be compiled with a type switch; this script rewrites a copy instead:

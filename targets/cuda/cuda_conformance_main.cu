@@ -3,7 +3,7 @@
 //   openpbr_cuda_conformance INPUT_DIR [OUTPUT_DIR]
 //
 // INPUT_DIR holds raw little-endian float32 files, as `openpbr conformance --dump DIR` writes
-// them (host/cuda_conformance.h): queries.f32 (OPENPBR_QUERY_FLOATS per query), materials.f32
+// them (host/gpu/cuda_conformance.h): queries.f32 (OPENPBR_QUERY_FLOATS per query), materials.f32
 // (packed materials), lut.f32 and fuzz_ltc.f32 (the shipped tables). For each path it writes
 // OUTPUT_DIR/<path>.results.f32 (OPENPBR_RESULT_FLOATS per query; OUTPUT_DIR defaults to
 // INPUT_DIR) and prints one line:

@@ -1,6 +1,6 @@
 // The body of the conformance kernel, shared by every executed path: the Slang kernel
 // (conformance.slang), the GLSL kernel (conformance.comp) and the CPU runner
-// (host/conformance.cpp) include this same text, so all paths run identical code.
+// (host/checks/conformance.cpp) include this same text, so all paths run identical code.
 //
 // Record layouts (floats):
 //   query  (OPENPBR_QUERY_FLOATS):  material index, view (3), light (3), u (3)

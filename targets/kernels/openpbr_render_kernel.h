@@ -1,5 +1,5 @@
 // The body of the preview path tracer, shared by every backend: the Slang compute kernel
-// (render.slang) and the CPU renderer (host/render.cpp) include this same text, so both run
+// (render.slang) and the CPU renderer (host/preview/render.cpp) include this same text, so both run
 // identical code (one pixel sample per call of openpbr_render_sample).
 //
 // Scene (one per gallery cell, in the cell's own coordinates): a sphere of radius R centred at
@@ -84,7 +84,7 @@
 #define OPENPBR_RENDER_ACCUMULATION_FLOATS 8
 
 // The library's macros do not cross the Slang module boundary, so the kernel spells the few it
-// needs itself (host/render.cpp checks them against the library's with static_assert).
+// needs itself (host/preview/render.cpp checks them against the library's with static_assert).
 #define OPENPBR_RENDER_FLOAT_MAX 3.4e+38f  // = OPENPBR_FLOAT_MAX (Slang reads 3.40282347e+38f as inf)
 #define OPENPBR_RENDER_TWO_PI 6.28318530717958647692f
 #define OPENPBR_RENDER_LOBE_TYPE_SPECULAR 16u

@@ -1,4 +1,4 @@
-// `openpbr bench accuracy --quick` (host/accuracy.h): the JSON schema with at least 20 rows
+// `openpbr bench accuracy --quick` (host/studies/accuracy.h): the JSON schema with at least 20 rows
 // covering every knob, finite values, a Pareto front, and the fast-math variant within its
 // stated per-query tolerance of the shipped build.
 #include <gtest/gtest.h>
@@ -8,7 +8,7 @@
 #include <set>
 #include <string>
 
-#include "host/accuracy.h"
+#include "host/studies/accuracy.h"
 
 namespace {
 

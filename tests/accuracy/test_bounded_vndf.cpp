@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "host/accuracy_variants.h"
+#include "host/studies/accuracy_variants.h"
 #include "slang/openpbr.h"
 
 namespace {

@@ -1,4 +1,4 @@
-// The ground truth of the accuracy study: the microsurface random walk (host/microsurface.h)
+// The ground truth of the accuracy study: the microsurface random walk (host/tables/microsurface.h)
 // against the closed-form single scattering, energy conservation of lossless walks, and the
 // shipped compensation tables against the walk (within 1 % absolute albedo).
 #include <gtest/gtest.h>
@@ -6,7 +6,7 @@
 #include <cmath>
 #include <string>
 
-#include "host/microsurface.h"
+#include "host/tables/microsurface.h"
 #include "slang/openpbr.h"
 
 namespace {

@@ -1,4 +1,4 @@
-// The Vulkan runner's sampled-image binding (host/vulkan_runner.h), which the accuracy study's
+// The Vulkan runner's sampled-image binding (host/gpu/vulkan_runner.h), which the accuracy study's
 // texture storage mode uses (OPENPBR_LUT_FILTERED_2D, docs/accuracy-vs-time.md): texel centres
 // return the texel, points between texels the bilinear blend, points outside the image the edge
 // texel (clamp to edge), with no validation message.
@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "host/vulkan_runner.h"
+#include "host/gpu/vulkan_runner.h"
 
 namespace {
 

@@ -11,11 +11,11 @@
 #include <string>
 #include <vector>
 
-#include "host/bench_specialization.h"
-#include "host/conformance.h"
-#include "host/features.h"
-#include "host/material_library.h"
-#include "host/vulkan_runner.h"
+#include "host/studies/bench_specialization.h"
+#include "host/checks/conformance.h"
+#include "host/scene/features.h"
+#include "host/scene/material_library.h"
+#include "host/gpu/vulkan_runner.h"
 #include "slang/openpbr.h"
 
 namespace {

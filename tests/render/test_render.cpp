@@ -7,9 +7,9 @@
 #include <filesystem>
 #include <string>
 
-#include "host/material_library.h"
-#include "host/render.h"
-#include "host/render_font.h"
+#include "host/scene/material_library.h"
+#include "host/preview/render.h"
+#include "host/preview/render_font.h"
 
 namespace {
 

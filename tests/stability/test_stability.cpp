@@ -14,9 +14,9 @@
 #include <set>
 #include <sstream>
 
-#include "host/conformance.h"
-#include "host/material_library.h"
-#include "host/stability.h"
+#include "host/checks/conformance.h"
+#include "host/scene/material_library.h"
+#include "host/checks/stability.h"
 
 namespace {
 

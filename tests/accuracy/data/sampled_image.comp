@@ -1,4 +1,4 @@
-// Reads a 2D image through the runner's sampled-image binding (host/vulkan_runner.h,
+// Reads a 2D image through the runner's sampled-image binding (host/gpu/vulkan_runner.h,
 // BufferBinding::image_width): results[i] = the bilinearly filtered texel value at
 // coordinates[i] (normalized texture coordinates), as the hardware-filtered table mode
 // (OPENPBR_LUT_FILTERED_2D) reads table 0.

@@ -1,0 +1,357 @@
+#include "host/checks/furnace.h"
+
+#include <algorithm>
+#include <cmath>
+#include <iomanip>
+#include <sstream>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_reduce.h>
+
+namespace openpbr::host {
+namespace {
+
+OpenPBR_ResolvedInputs white_base()
+{
+    OpenPBR_ResolvedInputs inputs = openpbr_make_default_resolved_inputs();
+    inputs.base_color = vec3(1.0f);
+    inputs.specular_color = vec3(1.0f);
+    inputs.subsurface_color = vec3(1.0f);
+    return inputs;
+}
+
+// A frame whose normal is not +z and whose tangent is not orthogonal to it: prepare must
+// orthonormalize, and anisotropic lobes see an oblique azimuth.
+OpenPBR_Basis tilted_basis()
+{
+    OpenPBR_Basis basis;
+    basis.normal = normalize(vec3(0.3f, -0.2f, 1.0f));
+    basis.tangent = vec3(1.0f, 0.5f, 0.0f);
+    basis.bitangent = cross(basis.normal, basis.tangent);
+    return basis;
+}
+
+OpenPBR_ResolvedInputs white_metal(float roughness, float anisotropy)
+{
+    OpenPBR_ResolvedInputs inputs = white_base();
+    inputs.base_metalness = 1.0f;
+    inputs.specular_roughness = roughness;
+    inputs.specular_roughness_anisotropy = anisotropy;
+    if (anisotropy > 0.0f)
+    {
+        inputs.geometry_basis = tilted_basis();
+        inputs.geometry_coat_basis = inputs.geometry_basis;
+        inputs.specular_anisotropy_rotation = vec2(std::cos(1.0f), std::sin(1.0f));
+    }
+    return inputs;
+}
+
+OpenPBR_ResolvedInputs white_dielectric(float specular_roughness, float diffuse_roughness)
+{
+    OpenPBR_ResolvedInputs inputs = white_base();
+    inputs.specular_roughness = specular_roughness;
+    inputs.base_diffuse_roughness = diffuse_roughness;
+    return inputs;
+}
+
+OpenPBR_ResolvedInputs white_glass(float roughness, float ior)
+{
+    OpenPBR_ResolvedInputs inputs = white_dielectric(roughness, 0.0f);
+    inputs.transmission_weight = 1.0f;
+    inputs.specular_ior = ior;
+    return inputs;
+}
+
+// One configuration built by a lambda over a starting material, e.g.
+// with(white_dielectric(0.3f, 0.0f), [](auto& i) { i.coat_weight = 1.0f; }).
+template <typename Edit>
+OpenPBR_ResolvedInputs with(OpenPBR_ResolvedInputs inputs, Edit edit)
+{
+    edit(inputs);
+    return inputs;
+}
+
+std::vector<FurnaceConfig> make_configs()
+{
+    using E = FurnaceExpectation;
+    using S = FurnaceSide;
+    const std::vector<S> both = {S::outside, S::inside};
+    std::vector<FurnaceConfig> configs = {
+        // Spec: a fully metallic base with white base_color and specular_color.
+        {"white_metal_r0", white_metal(0.0f, 0.0f)},
+        {"white_metal_r0p2", white_metal(0.2f, 0.0f)},
+        {"white_metal_r0p5", white_metal(0.5f, 0.0f)},
+        {"white_metal_r0p8", white_metal(0.8f, 0.0f)},
+        {"white_metal_r1", white_metal(1.0f, 0.0f)},
+        {"white_metal_aniso_r0p5_a0p8", white_metal(0.5f, 0.8f)},
+        {"white_metal_aniso_r1_a0p8", white_metal(1.0f, 0.8f)},
+        // Spec: a dielectric base with white specular_color and a white diffuse base.
+        {"white_diffuse_white_specular_r0", white_dielectric(0.0f, 0.0f)},
+        {"white_diffuse_white_specular_r0p3", white_dielectric(0.3f, 0.0f)},
+        {"white_diffuse_white_specular_r0p6", white_dielectric(0.6f, 0.0f)},
+        {"white_diffuse_white_specular_r1", white_dielectric(1.0f, 0.0f)},
+        {"eon_rough_white", with(white_dielectric(0.3f, 1.0f), [](auto& i) { i.specular_weight = 0.0f; })},
+        {"eon_rough_white_white_specular", white_dielectric(0.3f, 1.0f)},
+        {"eon_half_rough_white_white_specular", white_dielectric(0.5f, 0.5f)},
+        // specular_weight 0 or specular_ior 1: the specular interface vanishes (eta = 1).
+        {"white_lambert_no_specular", with(white_dielectric(0.3f, 0.0f), [](auto& i) { i.specular_weight = 0.0f; })},
+        {"white_diffuse_specular_ior_1", with(white_dielectric(0.3f, 0.0f), [](auto& i) { i.specular_ior = 1.0f; })},
+        // IOR 3: the top of the tables' IOR range.
+        {"white_diffuse_ior3_r0p3", with(white_dielectric(0.3f, 0.0f), [](auto& i) { i.specular_ior = 3.0f; })},
+        // Spec: subsurface with white subsurface_color (the BSDF part: reflection plus
+        // refraction into the medium; the white medium then returns everything).
+        {"white_subsurface", with(white_dielectric(0.3f, 0.0f), [](auto& i) { i.subsurface_weight = 1.0f; })},
+        // Spec: translucent base, white transmission_color without a medium ...
+        {"white_rough_glass", white_glass(0.3f, 1.5f), E::energy_conserving, both},
+        {"white_smooth_glass", white_glass(0.0f, 1.5f), E::energy_conserving, both},
+        {"white_very_rough_glass", white_glass(1.0f, 1.5f), E::energy_conserving, both},
+        {"white_glass_ior3_r0p3", white_glass(0.3f, 3.0f), E::energy_conserving, both},
+        // ... or white transmission_scatter with a medium.
+        {"white_glass_with_medium", with(white_glass(0.3f, 1.5f),
+                                         [](auto& i) {
+                                             i.transmission_depth = 1.0f;
+                                             i.transmission_scatter = vec3(1.0f);
+                                         }),
+         E::energy_conserving, both},
+        // Thin-walled glass and sheet (spec "Thin-walled case").
+        {"white_thin_walled_glass_r0p3", with(white_glass(0.3f, 1.5f), [](auto& i) { i.geometry_thin_walled = true; })},
+        {"white_thin_walled_glass_r0p8", with(white_glass(0.8f, 1.5f), [](auto& i) { i.geometry_thin_walled = true; })},
+        {"white_thin_walled_subsurface", with(white_dielectric(0.3f, 0.0f),
+                                              [](auto& i) {
+                                                  i.subsurface_weight = 1.0f;
+                                                  i.geometry_thin_walled = true;
+                                              })},
+        // Spec: any mix of the above.
+        {"white_half_metal", with(white_dielectric(0.4f, 0.0f), [](auto& i) { i.base_metalness = 0.5f; })},
+        {"white_dielectric_opacity_0p5", with(white_dielectric(0.4f, 0.0f), [](auto& i) { i.geometry_opacity = 0.5f; })},
+        {"white_mix_metal_glass_subsurface", with(white_dielectric(0.4f, 0.5f),
+                                                  [](auto& i) {
+                                                      i.base_metalness = 0.3f;
+                                                      i.transmission_weight = 0.4f;
+                                                      i.subsurface_weight = 0.5f;
+                                                  })},
+        // Spec: all of the above with a white coat.
+        {"white_coat_on_white_diffuse", with(white_dielectric(0.3f, 0.0f),
+                                             [](auto& i) {
+                                                 i.coat_weight = 1.0f;
+                                                 i.coat_roughness = 0.2f;
+                                             })},
+        {"white_half_coat_on_white_metal", with(white_metal(0.4f, 0.0f),
+                                                [](auto& i) {
+                                                    i.coat_weight = 0.5f;
+                                                    i.coat_roughness = 0.0f;
+                                                })},
+        {"white_rough_coat_on_white_metal", with(white_metal(0.2f, 0.0f),
+                                                 [](auto& i) {
+                                                     i.coat_weight = 1.0f;
+                                                     i.coat_roughness = 0.5f;
+                                                 })},
+        {"white_coat_on_white_glass", with(white_glass(0.3f, 1.5f),
+                                           [](auto& i) {
+                                               i.coat_weight = 1.0f;
+                                               i.coat_roughness = 0.1f;
+                                           })},
+        {"white_coat_ior3_on_white_diffuse", with(white_dielectric(0.3f, 0.0f),
+                                                  [](auto& i) {
+                                                      i.coat_weight = 1.0f;
+                                                      i.coat_roughness = 0.3f;
+                                                      i.coat_ior = 3.0f;
+                                                  })},
+        // Spec: all of the above with white fuzz.
+        {"white_fuzz_on_white_diffuse", with(white_dielectric(0.3f, 0.0f), [](auto& i) { i.fuzz_weight = 1.0f; })},
+        {"white_fuzz_on_white_metal", with(white_metal(0.3f, 0.0f), [](auto& i) { i.fuzz_weight = 1.0f; })},
+        {"white_everything", with(white_dielectric(0.4f, 0.5f),
+                                  [](auto& i) {
+                                      i.base_metalness = 0.2f;
+                                      i.transmission_weight = 0.3f;
+                                      i.subsurface_weight = 0.3f;
+                                      i.coat_weight = 0.6f;
+                                      i.coat_roughness = 0.2f;
+                                      i.fuzz_weight = 0.5f;
+                                      i.fuzz_roughness = 0.4f;
+                                  })},
+        // A thin film does not absorb (spec "Thin-film iridescence"): the furnace still holds.
+        {"white_metal_thin_film", with(white_metal(0.3f, 0.0f), [](auto& i) { i.thin_film_weight = 1.0f; })},
+        {"white_diffuse_thin_film", with(white_dielectric(0.3f, 0.0f), [](auto& i) { i.thin_film_weight = 1.0f; })},
+        {"white_glass_thin_film", with(white_glass(0.3f, 1.5f), [](auto& i) { i.thin_film_weight = 1.0f; }),
+         E::energy_conserving, both},
+        // The default material absorbs (base_color 0.8): it may only not gain energy.
+        {"default_material", openpbr_make_default_resolved_inputs(), E::no_energy_gain},
+    };
+    return configs;
+}
+
+// Counter-based random numbers (SplitMix64 finalizer over seed and index): the same numbers
+// whatever the thread partition, so every run of the command is reproducible.
+std::uint64_t mix64(std::uint64_t x)
+{
+    x += 0x9e3779b97f4a7c15ull;
+    x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ull;
+    x = (x ^ (x >> 27)) * 0x94d049bb133111ebull;
+    return x ^ (x >> 31);
+}
+
+float unit_float(std::uint64_t bits)
+{
+    // 24 random bits: every value exactly representable, strictly below 1.
+    return static_cast<float>(bits >> 40) * (1.0f / 16777216.0f);
+}
+
+struct Sums
+{
+    double sum[3] = {0.0, 0.0, 0.0};
+    double sum_squares[3] = {0.0, 0.0, 0.0};
+    double max_weight = 0.0;
+};
+
+std::string side_suffix(FurnaceSide side) { return side == FurnaceSide::inside ? "_inside" : ""; }
+
+}  // namespace
+
+const std::vector<FurnaceConfig>& white_furnace_configs()
+{
+    static const std::vector<FurnaceConfig> configs = make_configs();
+    return configs;
+}
+
+const std::vector<float>& white_furnace_view_cosines()
+{
+    static const std::vector<float> cosines = {1.0f, 0.5f, 0.1f, 0.02f, 1e-3f};
+    return cosines;
+}
+
+vec3 furnace_view(const OpenPBR_ResolvedInputs& inputs, float cos_theta, FurnaceSide side)
+{
+    const OpenPBR_Basis frame =
+        openpbr_make_basis(inputs.geometry_basis.normal, inputs.geometry_basis.tangent, inputs.geometry_basis.bitangent);
+    const float cos_signed = side == FurnaceSide::outside ? cos_theta : -cos_theta;
+    const float sin_theta = std::sqrt(std::max(0.0f, 1.0f - cos_signed * cos_signed));
+    const float phi = 0.6f;  // oblique to the tangent, e.g. for anisotropic lobes
+    return normalize(frame.tangent * (sin_theta * std::cos(phi)) + frame.bitangent * (sin_theta * std::sin(phi)) +
+                     frame.normal * cos_signed);
+}
+
+FurnaceEstimate estimate_furnace_albedo(const OpenPBR_ResolvedInputs& inputs, const vec3& view_world,
+                                        std::uint64_t samples, std::uint64_t seed)
+{
+    const OpenPBR_PreparedBsdf bsdf = openpbr_prepare(inputs, view_world);
+    const std::uint64_t stream = mix64(seed);
+    const Sums total = tbb::parallel_reduce(
+        tbb::blocked_range<std::uint64_t>(0, samples, 4096), Sums(),
+        [&](const tbb::blocked_range<std::uint64_t>& range, Sums sums) {
+            for (std::uint64_t i = range.begin(); i != range.end(); ++i)
+            {
+                const std::uint64_t key = stream ^ (i * 0xd1b54a32d192ed03ull);
+                const vec3 u(unit_float(mix64(key)), unit_float(mix64(key + 1)), unit_float(mix64(key + 2)));
+                const OpenPBR_BsdfSample s = openpbr_sample(bsdf, u);
+                if (!(s.pdf > 0.0f))
+                {
+                    continue;
+                }
+                const vec3 weight = s.weight.diffuse + s.weight.specular;
+                for (int channel = 0; channel < 3; ++channel)
+                {
+                    const double w = weight[channel];
+                    sums.sum[channel] += w;
+                    sums.sum_squares[channel] += w * w;
+                    sums.max_weight = std::max(sums.max_weight, w);
+                }
+            }
+            return sums;
+        },
+        [](Sums a, const Sums& b) {
+            for (int channel = 0; channel < 3; ++channel)
+            {
+                a.sum[channel] += b.sum[channel];
+                a.sum_squares[channel] += b.sum_squares[channel];
+            }
+            a.max_weight = std::max(a.max_weight, b.max_weight);
+            return a;
+        });
+    FurnaceEstimate estimate;
+    estimate.samples = samples;
+    estimate.max_weight = total.max_weight;
+    const double n = static_cast<double>(std::max<std::uint64_t>(samples, 1));
+    for (int channel = 0; channel < 3; ++channel)
+    {
+        const double mean = total.sum[channel] / n;
+        const double variance = std::max(total.sum_squares[channel] / n - mean * mean, 0.0);
+        estimate.albedo[channel] = mean;
+        estimate.standard_error[channel] = std::sqrt(variance / std::max(n - 1.0, 1.0));
+    }
+    return estimate;
+}
+
+std::vector<FurnaceRow> run_white_furnace(const FurnaceOptions& options)
+{
+    std::vector<FurnaceRow> rows;
+    std::uint64_t seed = 1;
+    for (const FurnaceConfig& config : white_furnace_configs())
+    {
+        if (!options.name_filter.empty() && config.name.find(options.name_filter) == std::string::npos)
+        {
+            continue;
+        }
+        for (const FurnaceSide side : config.sides)
+        {
+            for (const float cos_theta : white_furnace_view_cosines())
+            {
+                FurnaceRow row;
+                row.name = config.name + side_suffix(side);
+                row.cos_theta = cos_theta;
+                row.estimate =
+                    estimate_furnace_albedo(config.inputs, furnace_view(config.inputs, cos_theta, side), options.samples, seed++);
+                for (const double albedo : row.estimate.albedo)
+                {
+                    const bool gain = albedo > furnace_max_albedo;
+                    const bool off = config.expectation == FurnaceExpectation::energy_conserving &&
+                                     cos_theta >= furnace_tolerance_min_cos && std::fabs(1.0 - albedo) > furnace_tolerance;
+                    row.within_tolerance = row.within_tolerance && !gain && !off;
+                }
+                rows.push_back(row);
+            }
+        }
+    }
+    return rows;
+}
+
+nlohmann::json furnace_to_json(const std::vector<FurnaceRow>& rows)
+{
+    nlohmann::json configs = nlohmann::json::array();
+    for (const FurnaceRow& row : rows)
+    {
+        const FurnaceEstimate& e = row.estimate;
+        configs.push_back({{"name", row.name},
+                           {"cos_theta", row.cos_theta},
+                           {"albedo", {e.albedo[0], e.albedo[1], e.albedo[2]}},
+                           {"standard_error", {e.standard_error[0], e.standard_error[1], e.standard_error[2]}},
+                           {"max_weight", e.max_weight},
+                           {"samples", e.samples},
+                           {"pass", row.within_tolerance}});
+    }
+    return {{"configs", configs},
+            {"tolerance", furnace_tolerance},
+            {"tolerance_min_cos_theta", furnace_tolerance_min_cos},
+            {"max_albedo", furnace_max_albedo}};
+}
+
+std::string furnace_to_text(const std::vector<FurnaceRow>& rows)
+{
+    std::ostringstream text;
+    text << std::left << std::setw(44) << "configuration" << std::right << std::setw(8) << "cos" << std::setw(10) << "r"
+         << std::setw(10) << "g" << std::setw(10) << "b" << std::setw(10) << "+-" << std::setw(12) << "max weight"
+         << "  result\n";
+    for (const FurnaceRow& row : rows)
+    {
+        const FurnaceEstimate& e = row.estimate;
+        const double error = std::max({e.standard_error[0], e.standard_error[1], e.standard_error[2]});
+        text << std::left << std::setw(44) << row.name << std::right << std::setw(8) << std::setprecision(3)
+             << row.cos_theta << std::fixed << std::setprecision(5) << std::setw(10) << e.albedo[0] << std::setw(10)
+             << e.albedo[1] << std::setw(10) << e.albedo[2] << std::setw(10) << error << std::setprecision(2)
+             << std::setw(12) << e.max_weight << "  " << (row.within_tolerance ? "ok" : "FAIL") << "\n"
+             << std::defaultfloat;
+    }
+    return text.str();
+}
+
+}  // namespace openpbr::host

@@ -1,0 +1,136 @@
+// `openpbr features` and `openpbr bench specialization`: see features_command.h.
+#include "host/cli/features_command.h"
+
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <stdexcept>
+#include <vector>
+
+#include "host/studies/bench_specialization.h"
+#include "host/scene/features.h"
+#include "host/scene/material_library.h"
+
+namespace openpbr::host {
+
+namespace {
+
+void write_json(const std::string& path, const nlohmann::json& json)
+{
+    std::ofstream file(path);
+    file << json.dump(2) << "\n";
+    if (!file)
+    {
+        throw std::runtime_error("cannot write '" + path + "'");
+    }
+    std::cout << "wrote " << path << "\n";
+}
+
+// Runs `body`, turning errors into CLI11's exit codes: 1 for errors, `refusal_code` for a
+// FeatureError (a material needs a feature the chosen pipeline lacks).
+template <typename Body>
+void run_reporting_errors(Body body, int refusal_code)
+{
+    try
+    {
+        body();
+    }
+    catch (const CLI::Error&)
+    {
+        throw;
+    }
+    catch (const FeatureError& error)
+    {
+        std::cerr << "openpbr: refused: " << error.what() << "\n";
+        throw CLI::RuntimeError(refusal_code);
+    }
+    catch (const std::exception& error)
+    {
+        std::cerr << "openpbr: error: " << error.what() << "\n";
+        throw CLI::RuntimeError(1);
+    }
+}
+
+}  // namespace
+
+void add_features_subcommands(CLI::App& app, const std::string& materials_directory, const std::string& kernel_directory)
+{
+    struct FeaturesSettings
+    {
+        std::vector<std::string> files;
+        std::string json;
+        std::vector<std::string> pipeline;
+    };
+    auto features = std::make_shared<FeaturesSettings>();
+    CLI::App* command = app.add_subcommand(
+        "features", "smallest feature-toggle set that renders the materials exactly, and its specialization info");
+    command->add_option("files", features->files, "MaterialX files (default: every file of --materials-dir)");
+    command->add_option("--json", features->json, "write the report as JSON");
+    command->add_option("--pipeline", features->pipeline,
+                        "check a pipeline's toggle set, e.g. coat,metal (exit 3 when a material needs more)")
+        ->delimiter(',');
+    command->callback([features, &materials_directory]() {
+        run_reporting_errors(
+            [&]() {
+                std::vector<Material> materials;
+                if (features->files.empty())
+                {
+                    materials = load_material_directory(materials_directory);
+                }
+                for (const std::string& file : features->files)
+                {
+                    const std::vector<Material> loaded = load_materialx_file(file);
+                    materials.insert(materials.end(), loaded.begin(), loaded.end());
+                }
+                std::cout << features_report_text(materials);
+                if (!features->json.empty())
+                {
+                    write_json(features->json, features_report_json(materials));
+                }
+                if (!features->pipeline.empty())
+                {
+                    const std::uint32_t mask = parse_feature_names(features->pipeline);
+                    check_pipeline_supports(materials, mask);
+                    std::cout << "pipeline {" << feature_set_label(mask) << "} renders every material exactly\n";
+                }
+            },
+            3);
+    });
+
+    struct BenchSettings
+    {
+        SpecializationBenchOptions options;
+        std::string json;
+        bool cpu_only = false;
+    };
+    auto bench = std::make_shared<BenchSettings>();
+    CLI::App* bench_command = app.add_subcommand("bench", "measurements (timings, no pass/fail)");
+    bench_command->require_subcommand(1);
+    CLI::App* specialization =
+        bench_command->add_subcommand("specialization", "full versus specialized pipelines: lavapipe and CPU");
+    specialization->add_option("--json", bench->json, "write the report as JSON");
+    specialization->add_option("--queries", bench->options.gpu_queries, "lavapipe queries per scene and pipeline")
+        ->capture_default_str()->check(CLI::Range(std::size_t(64), std::size_t(10000000)));
+    specialization->add_option("--repeats", bench->options.gpu_repeats, "dispatches per pipeline (median of 2..n)")
+        ->capture_default_str()->check(CLI::Range(2, 100));
+    specialization->add_option("--path", bench->options.path, "GPU path, e.g. slang-spirv or glsl-spirv")
+        ->capture_default_str();
+    specialization->add_flag("--cpu-only", bench->cpu_only, "skip lavapipe");
+    specialization->callback([bench, &materials_directory, &kernel_directory]() {
+        run_reporting_errors(
+            [&]() {
+                bench->options.materials_directory = materials_directory;
+                bench->options.kernel_directory = kernel_directory;
+                bench->options.gpu = !bench->cpu_only;
+                const nlohmann::json report = run_specialization_bench(bench->options);
+                std::cout << specialization_bench_text(report);
+                if (!bench->json.empty())
+                {
+                    write_json(bench->json, report);
+                }
+            },
+            1);
+    });
+}
+
+}  // namespace openpbr::host

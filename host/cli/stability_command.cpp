@@ -1,0 +1,84 @@
+// `openpbr stability`: see stability_command.h.
+#include "host/cli/stability_command.h"
+
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <stdexcept>
+#include <vector>
+
+#include "host/checks/stability.h"
+
+namespace openpbr::host {
+
+CLI::App* add_stability_subcommand(CLI::App& app, const std::string& default_corpus, const std::string& kernel_directory)
+{
+    struct Settings
+    {
+        StabilityOptions options;
+        std::string corpus;
+        std::string json;
+        std::string fuzz_corpus;
+    };
+    auto settings = std::make_shared<Settings>();
+    settings->corpus = default_corpus;
+    // The measurement: 10^6 samples per case on the CPU (about 2 minutes for the corpus on
+    // 2 cores), 10^5 on each GPU path (lavapipe runs about 10^6 queries/s there).
+    settings->options.samples_per_case = 1000000;
+    settings->options.gpu_samples_per_case = 100000;
+    CLI::App* command = app.add_subcommand(
+        "stability", "hard-case corpus on the CPU build and every GPU path: non-finite, negative, energy gain");
+    command->add_option("--corpus", settings->corpus, "stability corpus (JSON)")->capture_default_str();
+    command->add_option("--samples", settings->options.samples_per_case, "extra samples per case")
+        ->capture_default_str()->check(CLI::Range(std::size_t(0), std::size_t(100000000)));
+    command->add_option("--gpu-samples", settings->options.gpu_samples_per_case,
+                        "samples per case on GPU paths (0 = --samples)")->capture_default_str();
+    command->add_option("--seed", settings->options.seed, "random seed")->capture_default_str();
+    command->add_option("--paths", settings->options.paths, "paths to run: cpu and GPU paths (default: all)");
+    command->add_option("--json", settings->json, "write the report as JSON");
+    command->add_flag("--validation", settings->options.validation, "enable Vulkan validation layers");
+    command->add_option("--write-fuzz-corpus", settings->fuzz_corpus,
+                        "write the fuzzer seed inputs (first three lights of each case) to this directory and exit");
+    command->callback([settings, &kernel_directory]() {
+        try
+        {
+            const std::vector<StabilityCase> cases = load_stability_corpus(settings->corpus);
+            if (!settings->fuzz_corpus.empty())
+            {
+                const std::size_t count = write_fuzz_seed_corpus(cases, settings->fuzz_corpus);
+                std::cout << "wrote " << count << " seed inputs to " << settings->fuzz_corpus << "\n";
+                return;
+            }
+            settings->options.kernel_directory = kernel_directory;
+            const StabilityReport report = run_stability(cases, settings->options);
+            std::cout << to_text(report);
+            if (!settings->json.empty())
+            {
+                std::ofstream file(settings->json);
+                file << to_json(report).dump(2) << "\n";
+                if (!file)
+                {
+                    throw std::runtime_error("cannot write '" + settings->json + "'");
+                }
+                std::cout << "wrote " << settings->json << "\n";
+            }
+            if (has_violations(report))
+            {
+                std::cerr << "openpbr stability: non-finite or negative outputs found\n";
+                throw CLI::RuntimeError(2);
+            }
+        }
+        catch (const CLI::Error&)
+        {
+            throw;
+        }
+        catch (const std::exception& error)
+        {
+            std::cerr << "openpbr: error: " << error.what() << "\n";
+            throw CLI::RuntimeError(1);
+        }
+    });
+    return command;
+}
+
+}  // namespace openpbr::host

@@ -1,0 +1,229 @@
+// `openpbr compile`: see compile_targets.h.
+#include "host/gpu/compile_targets.h"
+
+#include <spawn.h>
+#include <sys/wait.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <chrono>
+#include <cstring>
+#include <filesystem>
+#include <iomanip>
+#include <sstream>
+#include <stdexcept>
+
+// Set by the build (targets/CMakeLists.txt): the repository root, node, and the native slangc
+// of the CMake cache variable OPENPBR_SLANGC (empty: node + targets/slangc.mjs).
+#ifndef OPENPBR_COMPILE_SOURCE_DIR
+#define OPENPBR_COMPILE_SOURCE_DIR "."
+#endif
+#ifndef OPENPBR_COMPILE_NODE
+#define OPENPBR_COMPILE_NODE "node"
+#endif
+#ifndef OPENPBR_COMPILE_SLANGC
+#define OPENPBR_COMPILE_SLANGC ""
+#endif
+
+extern char** environ;
+
+namespace openpbr::host {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct TargetInfo
+{
+    const char* name;
+    const char* extension;
+};
+
+constexpr TargetInfo target_infos[] = {
+    {"spirv", "spv"}, {"hlsl", "hlsl"}, {"metal", "metal"}, {"cuda", "cu"}, {"glsl", "glsl"},
+};
+
+const char* extension_of(const std::string& target)
+{
+    for (const TargetInfo& info : target_infos)
+    {
+        if (target == info.name)
+        {
+            return info.extension;
+        }
+    }
+    throw std::invalid_argument("unknown target '" + target + "'; known: spirv, hlsl, metal, cuda, glsl, all");
+}
+
+std::string quote_command(const std::vector<std::string>& arguments)
+{
+    std::string text;
+    for (const std::string& argument : arguments)
+    {
+        text += text.empty() ? "" : " ";
+        text += argument.find_first_of(" \t'\"") == std::string::npos ? argument : "'" + argument + "'";
+    }
+    return text;
+}
+
+// Runs a command (no shell) and waits for it; returns its wall time. Its output goes to ours.
+double run_command(const std::vector<std::string>& arguments)
+{
+    std::vector<char*> argv;
+    for (const std::string& argument : arguments)
+    {
+        argv.push_back(const_cast<char*>(argument.c_str()));
+    }
+    argv.push_back(nullptr);
+    const auto start = std::chrono::steady_clock::now();
+    pid_t pid = 0;
+    const int spawn_error = posix_spawnp(&pid, argv[0], nullptr, nullptr, argv.data(), environ);
+    if (spawn_error != 0)
+    {
+        throw std::runtime_error("cannot run " + quote_command(arguments) + ": " + std::strerror(spawn_error));
+    }
+    int status = 0;
+    while (waitpid(pid, &status, 0) < 0)
+    {
+        if (errno != EINTR)
+        {
+            throw std::runtime_error("waitpid failed for " + quote_command(arguments));
+        }
+    }
+    if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)
+    {
+        throw std::runtime_error("command failed (status " + std::to_string(WIFEXITED(status) ? WEXITSTATUS(status) : -1) +
+                                 "): " + quote_command(arguments));
+    }
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+std::vector<std::string> slang_command(const CompileTargetsOptions& options, const std::string& target)
+{
+    std::vector<std::string> command =
+        options.slangc.empty()
+            ? std::vector<std::string>{options.node, (fs::path(options.source_directory) / "targets" / "slangc.mjs").string(), "-q"}
+            : std::vector<std::string>{options.slangc};
+    command.insert(command.end(), {"-target", target});
+    // Feature toggles (slang/openpbr_features.h): Slang turns specialization constants into
+    // uniforms for HLSL and CUDA, so those outputs take compile-time permutations (SPIR-V keeps
+    // them, Metal gets function constants).
+    if (target == "hlsl" || target == "cuda")
+    {
+        command.insert(command.end(), {"-D", "OPENPBR_SPECIALIZATION_CONSTANTS=0"});
+    }
+    return command;
+}
+
+CompiledFile record(const std::string& target, const std::string& description, const fs::path& path, double seconds)
+{
+    CompiledFile file;
+    file.target = target;
+    file.description = description;
+    file.path = path.string();
+    file.bytes = fs::file_size(path);
+    file.seconds = seconds;
+    return file;
+}
+
+}  // namespace
+
+const std::vector<std::string>& compile_target_names()
+{
+    static const std::vector<std::string> names = [] {
+        std::vector<std::string> list;
+        for (const TargetInfo& info : target_infos)
+        {
+            list.push_back(info.name);
+        }
+        return list;
+    }();
+    return names;
+}
+
+CompileTargetsOptions default_compile_targets_options()
+{
+    CompileTargetsOptions options;
+    options.source_directory = OPENPBR_COMPILE_SOURCE_DIR;
+    options.node = OPENPBR_COMPILE_NODE;
+    options.slangc = OPENPBR_COMPILE_SLANGC;
+    return options;
+}
+
+std::vector<CompiledFile> compile_targets(const CompileTargetsOptions& options)
+{
+    if (options.output_directory.empty())
+    {
+        throw std::invalid_argument("no output directory");
+    }
+    std::vector<std::string> targets;
+    for (const std::string& target : options.targets.empty() ? std::vector<std::string>{"all"} : options.targets)
+    {
+        const std::vector<std::string> expanded = target == "all" ? compile_target_names() : std::vector<std::string>{target};
+        for (const std::string& name : expanded)
+        {
+            extension_of(name);
+            if (std::find(targets.begin(), targets.end(), name) == targets.end())
+            {
+                targets.push_back(name);
+            }
+        }
+    }
+
+    const fs::path source(options.source_directory);
+    const fs::path slang_dir = source / "slang";
+    const fs::path conformance = source / "targets" / "kernels" / "conformance.slang";
+    const fs::path example = source / "examples" / "shade_batch.slang";
+    std::vector<CompiledFile> files;
+    for (const std::string& target : targets)
+    {
+        const fs::path directory = fs::path(options.output_directory) / target;
+        fs::create_directories(directory);
+        const std::string extension = extension_of(target);
+
+        const fs::path kernel_out = directory / ("conformance.slang." + extension);
+        std::vector<std::string> kernel = slang_command(options, target);
+        kernel.insert(kernel.end(), {"-entry", "conformance_main", "-stage", "compute", "-I", slang_dir.string(), "-o",
+                                     kernel_out.string(), conformance.string()});
+        files.push_back(record(target, "conformance kernel (Slang)", kernel_out, run_command(kernel)));
+
+        const fs::path example_out = directory / ("shade_batch." + extension);
+        std::vector<std::string> consumer = slang_command(options, target);
+        consumer.insert(consumer.end(), {"-entry", "shade_batch", "-stage", "compute", "-I", slang_dir.string(), "-o",
+                                         example_out.string(), example.string()});
+        files.push_back(record(target, "example shade_batch (Slang)", example_out, run_command(consumer)));
+
+        if (target == "hlsl")
+        {
+            const fs::path generator = source / "targets" / "hlsl" / "generate_hlsl.mjs";
+            const fs::path library_in = source / "targets" / "hlsl" / "openpbr.hlsl.in";
+            const fs::path library_out = directory / "openpbr.hlsl";
+            files.push_back(record(target, "HLSL library (headers, flattened)", library_out,
+                                   run_command({options.node, generator.string(), "-preset", "hlsl", "-I", slang_dir.string(),
+                                                "-o", library_out.string(), library_in.string()})));
+            const fs::path body_out = directory / "openpbr_conformance_kernel.hlsl";
+            files.push_back(record(target, "conformance kernel body for the HLSL library", body_out,
+                                   run_command({options.node, generator.string(), "-preset", "hlsl", "-I", slang_dir.string(),
+                                                "-provided", library_in.string(), "-o", body_out.string(),
+                                                (source / "targets" / "kernels" / "openpbr_conformance_kernel.h").string()})));
+            const fs::path kernel_copy = directory / "conformance.hlsl";
+            fs::copy_file(source / "targets" / "hlsl" / "conformance.hlsl", kernel_copy, fs::copy_options::overwrite_existing);
+            files.push_back(record(target, "conformance kernel over the HLSL library", kernel_copy, 0.0));
+        }
+    }
+    return files;
+}
+
+std::string to_text(const std::vector<CompiledFile>& files)
+{
+    std::ostringstream text;
+    for (const CompiledFile& file : files)
+    {
+        text << std::left << std::setw(6) << file.target << std::right << std::setw(9) << file.bytes << " bytes "
+             << std::fixed << std::setprecision(2) << std::setw(6) << file.seconds << " s  " << file.path << "  ("
+             << file.description << ")\n";
+    }
+    return text.str();
+}
+
+}  // namespace openpbr::host

@@ -1,0 +1,155 @@
+// CUDA conformance through openpbr_cuda_conformance: see cuda_conformance.h.
+#include "host/gpu/cuda_conformance.h"
+
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <random>
+#include <sstream>
+#include <stdexcept>
+
+#include "host/gpu/shipped_tables.h"
+
+// Set by targets/CMakeLists.txt to the program's path when nvcc was found.
+#ifndef OPENPBR_CUDA_CONFORMANCE_PROGRAM
+#define OPENPBR_CUDA_CONFORMANCE_PROGRAM ""
+#endif
+
+namespace openpbr::host {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+const char* const cuda_path_names[] = {"cuda", "slang-cuda"};
+
+void write_floats(const fs::path& path, const std::vector<float>& values)
+{
+    std::ofstream file(path, std::ios::binary);
+    file.write(reinterpret_cast<const char*>(values.data()), std::streamsize(values.size() * sizeof(float)));
+    if (!file)
+    {
+        throw std::runtime_error("cannot write '" + path.string() + "'");
+    }
+}
+
+bool read_floats(const fs::path& path, std::vector<float>& values)
+{
+    std::ifstream file(path, std::ios::binary);
+    if (!file)
+    {
+        return false;
+    }
+    const std::vector<char> bytes((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+    values.resize(bytes.size() / sizeof(float));
+    std::copy(bytes.begin(), bytes.begin() + std::ptrdiff_t(values.size() * sizeof(float)),
+              reinterpret_cast<char*>(values.data()));
+    return bytes.size() % sizeof(float) == 0;
+}
+
+std::string shell_quote(const std::string& text)
+{
+    std::string quoted = "'";
+    for (const char c : text)
+    {
+        quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    }
+    return quoted + "'";
+}
+
+std::vector<ExternalPathResult> not_executed(const std::string& note)
+{
+    std::vector<ExternalPathResult> results;
+    for (const char* name : cuda_path_names)
+    {
+        ExternalPathResult result;
+        result.name = name;
+        result.note = note;
+        results.push_back(result);
+    }
+    return results;
+}
+
+}  // namespace
+
+void write_conformance_inputs(const std::string& directory, const std::vector<float>& queries,
+                              const std::vector<float>& materials)
+{
+    fs::create_directories(directory);
+    write_floats(fs::path(directory) / "queries.f32", queries);
+    write_floats(fs::path(directory) / "materials.f32", materials);
+    write_floats(fs::path(directory) / "lut.f32", shipped_lut());
+    write_floats(fs::path(directory) / "fuzz_ltc.f32", shipped_fuzz_ltc());
+}
+
+std::string default_cuda_conformance_program()
+{
+    return OPENPBR_CUDA_CONFORMANCE_PROGRAM;
+}
+
+std::vector<ExternalPathResult> run_cuda_conformance_program(const std::string& program,
+                                                            const std::vector<float>& queries,
+                                                            const std::vector<float>& materials)
+{
+    if (program.empty())
+    {
+        return not_executed("not built: nvcc was not found when the build was configured");
+    }
+    if (!fs::exists(program))
+    {
+        return not_executed("not built: " + program + " does not exist (build target openpbr_cuda_programs)");
+    }
+    std::random_device seed;
+    const fs::path directory = fs::temp_directory_path() / ("openpbr-cuda-" + std::to_string(seed()));
+    write_conformance_inputs(directory.string(), queries, materials);
+
+    // The program prints one line per path ("<name>: executed on ..." or "<name>: skipped: ...").
+    const std::string command = shell_quote(program) + " " + shell_quote(directory.string()) + " 2>&1";
+    std::string output;
+    int status = -1;
+    if (FILE* pipe = popen(command.c_str(), "r"))
+    {
+        char buffer[4096];
+        while (const std::size_t n = std::fread(buffer, 1, sizeof(buffer), pipe))
+        {
+            output.append(buffer, n);
+        }
+        status = pclose(pipe);
+    }
+    const int exit_code = status >= 0 && WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+
+    std::vector<ExternalPathResult> results = not_executed("");
+    for (ExternalPathResult& result : results)
+    {
+        std::istringstream lines(output);
+        std::string line;
+        const std::string prefix = result.name + ": ";
+        while (std::getline(lines, line))
+        {
+            if (line.rfind(prefix, 0) == 0)
+            {
+                result.note = line.substr(prefix.size());
+            }
+        }
+        if (result.note.empty())
+        {
+            result.note = "no result (exit status " + std::to_string(exit_code) + "): " + output;
+        }
+        if (result.note.rfind("executed", 0) == 0)
+        {
+            result.executed = read_floats(directory / (result.name + ".results.f32"), result.results);
+            if (!result.executed)
+            {
+                result.note = "executed, but " + result.name + ".results.f32 could not be read";
+            }
+        }
+    }
+    std::error_code ignored;
+    fs::remove_all(directory, ignored);
+    return results;
+}
+
+}  // namespace openpbr::host

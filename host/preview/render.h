@@ -1,0 +1,110 @@
+// render.h - a small preview path tracer over the OpenPBR BSDF: a labelled gallery of
+// material spheres and a white furnace, rendered by one kernel body
+// (targets/kernels/openpbr_render_kernel.h) on the CPU (TBB over pixels) or as a Vulkan
+// compute shader (targets/kernels/render.slang, lavapipe on machines without a GPU).
+//
+// Units: radiance in "render units"; emission (nits) is converted with
+// kNitsToRenderUnits (1 render unit = 100 nits, SDR reference white), so the 10000-nit light
+// bulb material is 100 units and a 200-nit display 2 units. The sky is about 0.2 to 0.9 units,
+// the area light 40 units. Tone mapping: exposure, then the ACES filmic fit of Narkowicz
+// (2015), then the sRGB transfer function. Colors of the materials are used as linear
+// Rec.709 values (the loader does not convert color spaces).
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "host/scene/material_library.h"
+
+namespace openpbr::host {
+
+constexpr float kNitsToRenderUnits = 0.01f;
+
+enum class RenderBackend { cpu, vulkan };
+
+const char* to_string(RenderBackend backend);
+
+struct RenderSettings {
+    int cell_size = 128;           // pixels per (square) cell, one material per cell
+    int columns = 0;               // 0: chosen from the material count (about 8:7 for 55)
+    int samples_per_pixel = 32;
+    std::uint32_t seed = 1;
+    int max_depth = 8;             // surface scattering events
+    int max_volume_events = 256;   // scattering events in a medium
+    int roulette_depth = 3;        // Russian roulette from this many events on
+    bool furnace = false;          // uniform environment only: no ground, no light, no sky
+    float environment = 1.0f;      // furnace environment radiance (render units)
+    bool progress = true;          // progress bar with time left on stderr
+    std::string progress_label;    // e.g. "cpu"; empty: the backend's name
+    int chunk_samples = 0;         // samples per pass (CPU) or dispatch (Vulkan); 0: automatic
+    std::string kernel_directory;  // where render.slang.spv is (Vulkan)
+};
+
+struct RenderImage {
+    int width = 0;
+    int height = 0;
+    int cell_size = 0;
+    int columns = 0;
+    int rows = 0;
+    int samples_per_pixel = 0;
+    std::vector<std::string> labels;    // one per cell with a sphere
+    std::vector<float> mean;            // linear RGB per pixel, row-major from the top
+    std::vector<float> variance_of_mean;  // per pixel and channel: sample variance / spp
+    std::vector<float> object_fraction;   // per pixel: share of camera rays that hit the sphere
+    std::uint64_t nonfinite_samples = 0;  // non-finite samples, replaced by 0
+    double seconds = 0.0;                 // wall time of the whole render (setup included)
+    double first_pass_seconds = 0.0;      // the first pass/dispatch (Vulkan: includes the JIT)
+    double ns_per_pixel_sample = 0.0;     // wall time / (pixels x spp), setup excluded
+    std::string device;                   // "N TBB threads" or the Vulkan device's name
+};
+
+// Renders one sphere per material (in order, row-major), on the chosen backend. Throws
+// std::runtime_error when the Vulkan backend has no device (see vulkan_render_available) or
+// a step fails.
+RenderImage render_materials(const std::vector<Material>& materials, const RenderSettings& settings,
+                             RenderBackend backend);
+
+// Whether a Vulkan device can be created; the reason in *reason when not.
+bool vulkan_render_available(std::string* reason);
+
+// The neutral ground: default OpenPBR inputs with a mid-grey base and a rough specular; the
+// kernel multiplies its base color by a checker (1 or 0.55).
+Material render_ground_material();
+
+// White, non-emissive, non-absorbing configurations for the furnace test: white diffuse under
+// white specular, white metal, white glass (smooth), white coat over white, white fuzz over
+// white, thin-walled white glass, white subsurface; then rough white glass and a white
+// surface with geometry_opacity 0.5.
+std::vector<Material> furnace_materials();
+
+struct SphereStatistics {
+    std::string label;
+    double mean[3] = {0.0, 0.0, 0.0};  // over the pixels fully covered by the sphere
+    double relative_error = 0.0;       // max over channels of |mean / reference - 1|
+    std::size_t pixels = 0;
+};
+
+// Mean radiance over each sphere's fully covered pixels, against a reference radiance.
+std::vector<SphereStatistics> sphere_statistics(const RenderImage& image, float reference);
+
+struct RenderComparison {
+    double rmse = 0.0;               // RMS over pixels and channels of a - b (linear)
+    double noise = 0.0;              // RMS standard error of one render (mean of both images' estimates)
+    double max_abs_difference = 0.0;
+    double identical_fraction = 0.0; // pixels whose three channels agree to 1e-4 relative
+    std::uint64_t nonfinite_a = 0;
+    std::uint64_t nonfinite_b = 0;
+};
+
+RenderComparison compare_renders(const RenderImage& a, const RenderImage& b);
+
+// PNG of the tone-mapped image (exposure, ACES fit, sRGB), with the cell labels when asked.
+void write_render_png(const std::string& path, const RenderImage& image, float exposure, bool labels);
+
+// PNG of |a - b| x scale, per channel, gamma-encoded (sRGB transfer function, no tone curve).
+void write_difference_png(const std::string& path, const RenderImage& a, const RenderImage& b, float scale);
+
+}  // namespace openpbr::host

@@ -1,0 +1,842 @@
+// lut_generator.cpp - Monte Carlo generation of the energy-compensation tables (see
+// lut_generator.h for the tables, the estimator and the file formats).
+//
+// This file is compiled in table buffer mode whatever the build defines: it reads only the
+// layout macros of slang/openpbr_lut.h and the pure GGX / VNDF / Fresnel functions, never the
+// table data, so it compiles before (and without) slang/generated/openpbr_lut_values.inc. It
+// calls no look-up function and never reads openpbr_lut_data, so no buffer-mode definition is
+// emitted into this object file and other files may include openpbr_lut.h in array mode.
+#undef OPENPBR_LUT_MODE_ARRAY
+#undef OPENPBR_LUT_MODE_TEXTURE
+#ifndef OPENPBR_LUT_MODE_BUFFER
+#define OPENPBR_LUT_MODE_BUFFER 1
+#endif
+
+#include "host/tables/lut_generator.h"
+
+#include "slang/math/openpbr_fresnel.h"
+#include "slang/math/openpbr_ggx.h"
+#include "slang/math/openpbr_vndf.h"
+#include "slang/openpbr_lut.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cerrno>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <limits>
+#include <mutex>
+#include <sstream>
+#include <system_error>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#if defined(_WIN32)
+#include <io.h>
+#define OPENPBR_LUTGEN_ISATTY(fd) _isatty(fd)
+#define OPENPBR_LUTGEN_FILENO(f) _fileno(f)
+#else
+#include <unistd.h>
+#define OPENPBR_LUTGEN_ISATTY(fd) isatty(fd)
+#define OPENPBR_LUTGEN_FILENO(f) fileno(f)
+#endif
+
+namespace openpbr::host {
+namespace {
+
+// Parameter floors: mu = 0 and alpha = 0 would divide by zero in Lambda and the VNDF sampler.
+// alpha = 1e-4 is far below OPENPBR_DELTA_ALPHA_THRESHOLD, so the r = 0 nodes hold the delta
+// (smooth interface) limit to within float precision except at grazing mu.
+constexpr double minimum_mu = 1e-4;
+constexpr double minimum_alpha = 1e-4;
+
+constexpr int maximum_size_2d = 1024;
+constexpr int maximum_size_3d = 256;
+constexpr int maximum_size_4d = 64;
+
+void check_table(const int table)
+{
+    if (table < 0 || table >= lut_table_count)
+    {
+        throw std::invalid_argument("lut_generator: table id " + std::to_string(table) + " is not in [0, " +
+                                    std::to_string(lut_table_count - 1) + "]");
+    }
+}
+
+// ---- Sample sequence -------------------------------------------------------------------------
+
+std::uint32_t reverse_bits(std::uint32_t v)
+{
+    v = ((v >> 1) & 0x55555555u) | ((v & 0x55555555u) << 1);
+    v = ((v >> 2) & 0x33333333u) | ((v & 0x33333333u) << 2);
+    v = ((v >> 4) & 0x0F0F0F0Fu) | ((v & 0x0F0F0F0Fu) << 4);
+    v = ((v >> 8) & 0x00FF00FFu) | ((v & 0x00FF00FFu) << 8);
+    return (v >> 16) | (v << 16);
+}
+
+// Second Sobol dimension: its generator matrix is Pascal's triangle mod 2, whose columns are
+// v_1 = 2^31 and v_{k+1} = v_k xor (v_k >> 1). With the van der Corput sequence (the first
+// dimension, reverse_bits) it forms a (0, 2)-sequence: every 2^m consecutive points aligned
+// at a multiple of 2^m put one point in each of the 2^m elementary dyadic boxes.
+std::uint32_t sobol_second_dimension(std::uint32_t index)
+{
+    std::uint32_t result = 0;
+    for (std::uint32_t column = 0x80000000u; index != 0; index >>= 1, column ^= column >> 1)
+    {
+        if (index & 1u)
+        {
+            result ^= column;
+        }
+    }
+    return result;
+}
+
+// 32 random bits -> float in [0, 1): the top 24 bits, so the result is exact and below 1.
+float bits_to_unit_float(const std::uint32_t bits) { return float(bits >> 8) * (1.0f / 16777216.0f); }
+
+// 64-bit finaliser (xor-shift-multiply), a bijection that spreads every input bit over the output.
+std::uint64_t mix64(std::uint64_t x)
+{
+    x ^= x >> 30;
+    x *= 0xBF58476D1CE4E5B9ull;
+    x ^= x >> 27;
+    x *= 0x94D049BB133111EBull;
+    x ^= x >> 31;
+    return x;
+}
+
+// ---- Per-sample weights -----------------------------------------------------------------------
+
+struct CellSetup
+{
+    int table;
+    vec3 view;
+    vec2 alpha;
+    float eta;
+    float lambda_view;
+    float inverse_g1_view;  // 1 + Lambda(wo)
+};
+
+// G2(wo, w) / G1(wo) for a light direction w.
+float masking_ratio(const CellSetup& cell, const vec3 light)
+{
+    return cell.inverse_g1_view * openpbr_ggx_g2(cell.lambda_view, openpbr_ggx_lambda(light, cell.alpha));
+}
+
+float reflection_weight(const CellSetup& cell, const vec3 h)
+{
+    const vec3 light = reflect(-cell.view, h);
+    return light.z > 0.0f ? masking_ratio(cell, light) : 0.0f;
+}
+
+// Refraction of the view through the microfacet h into the lower side (eta = n_t / n_i); GLSL
+// refract returns the zero vector under total internal reflection, which the z test rejects.
+float transmission_weight(const CellSetup& cell, const vec3 h)
+{
+    const vec3 light = refract(-cell.view, h, 1.0f / cell.eta);
+    return light.z < 0.0f ? masking_ratio(cell, light) : 0.0f;
+}
+
+float sample_weight(const CellSetup& cell, const vec3 h)
+{
+    switch (cell.table)
+    {
+    case lut_table_ggx_albedo:
+    case lut_table_ggx_anisotropy_ratio:
+        return reflection_weight(cell, h);
+    case lut_table_dielectric_reflection:
+        return openpbr_fresnel_dielectric(dot(cell.view, h), cell.eta) * reflection_weight(cell, h);
+    case lut_table_dielectric_transmission:
+        return transmission_weight(cell, h);
+    default:
+    {
+        // Both events of the same microfacet, weighted by F and 1 - F: no random choice between
+        // them, so the only variance left is that of h.
+        const float fresnel = openpbr_fresnel_dielectric(dot(cell.view, h), cell.eta);
+        const float reflected = fresnel > 0.0f ? fresnel * reflection_weight(cell, h) : 0.0f;
+        const float transmitted = fresnel < 1.0f ? (1.0f - fresnel) * transmission_weight(cell, h) : 0.0f;
+        return reflected + transmitted;
+    }
+    }
+}
+
+// ---- Progress bar --------------------------------------------------------------------------
+
+class ProgressBar
+{
+public:
+    ProgressBar(const std::size_t total, const bool enabled, const bool terminal)
+        : total_(total), enabled_(enabled && total > 0), terminal_(terminal), start_(Clock::now())
+    {
+    }
+
+    void cell_done()
+    {
+        const std::size_t done = done_.fetch_add(1, std::memory_order_relaxed) + 1;
+        if (!enabled_)
+        {
+            return;
+        }
+        std::unique_lock<std::mutex> lock(mutex_, std::try_to_lock);
+        if (!lock.owns_lock())
+        {
+            return;  // another thread is printing; this update is skipped, not queued
+        }
+        const double elapsed = seconds_since_start();
+        if (terminal_)
+        {
+            if (elapsed - last_print_ >= 0.1 || done == total_)
+            {
+                last_print_ = elapsed;
+                print(done, elapsed);
+            }
+        }
+        else
+        {
+            const int decile = int(10 * done / total_);
+            if (decile > last_decile_)
+            {
+                last_decile_ = decile;
+                print(done, elapsed);
+            }
+        }
+    }
+
+    void finish()
+    {
+        if (!enabled_)
+        {
+            return;
+        }
+        std::lock_guard<std::mutex> lock(mutex_);
+        const std::size_t done = done_.load();
+        if (terminal_)
+        {
+            print(done, seconds_since_start());
+            std::fputc('\n', stderr);
+        }
+        else if (last_decile_ < 10)
+        {
+            print(done, seconds_since_start());
+        }
+        std::fflush(stderr);
+    }
+
+private:
+    using Clock = std::chrono::steady_clock;
+
+    double seconds_since_start() const { return std::chrono::duration<double>(Clock::now() - start_).count(); }
+
+    void print(const std::size_t done, const double elapsed) const
+    {
+        const double fraction = double(done) / double(total_);
+        constexpr int width = 30;
+        const int filled = std::min(width, int(fraction * width));
+        char bar[width + 1];
+        for (int i = 0; i < width; ++i)
+        {
+            bar[i] = i < filled ? '#' : '.';
+        }
+        bar[width] = '\0';
+        char eta_text[32] = "?";
+        if (done > 0)
+        {
+            std::snprintf(eta_text, sizeof(eta_text), "%.1f s", elapsed * double(total_ - done) / double(done));
+        }
+        std::fprintf(stderr, "%slutgen [%s] %5.1f%%  elapsed %.1f s  ETA %s%s", terminal_ ? "\r" : "", bar,
+                     100.0 * fraction, elapsed, eta_text, terminal_ ? "   " : "\n");
+        std::fflush(stderr);
+    }
+
+    std::size_t total_;
+    bool enabled_;
+    bool terminal_;
+    Clock::time_point start_;
+    std::atomic<std::size_t> done_{0};
+    std::mutex mutex_;
+    double last_print_ = -1.0;
+    int last_decile_ = 0;
+};
+
+// ---- Files ---------------------------------------------------------------------------------
+
+bool host_is_little_endian()
+{
+    const std::uint32_t probe = 1;
+    unsigned char first = 0;
+    std::memcpy(&first, &probe, 1);
+    return first == 1;
+}
+
+std::uint32_t byte_swap(const std::uint32_t v)
+{
+    return (v >> 24) | ((v >> 8) & 0x0000FF00u) | ((v << 8) & 0x00FF0000u) | (v << 24);
+}
+
+// Writes `contents` to a temporary file next to `path`, then renames it over `path`.
+void write_file_atomically(const std::filesystem::path& path, const std::string& contents)
+{
+    std::filesystem::path temporary = path;
+    temporary += ".tmp";
+    {
+        std::ofstream file(temporary, std::ios::binary | std::ios::trunc);
+        if (!file)
+        {
+            throw std::runtime_error("lut_generator: cannot open " + temporary.string() + " for writing: " +
+                                     std::strerror(errno));
+        }
+        file.write(contents.data(), std::streamsize(contents.size()));
+        file.close();
+        if (!file)
+        {
+            std::error_code ignored;
+            std::filesystem::remove(temporary, ignored);
+            throw std::runtime_error("lut_generator: cannot write " + temporary.string());
+        }
+    }
+    std::error_code error;
+    std::filesystem::rename(temporary, path, error);
+    if (error)
+    {
+        std::error_code ignored;
+        std::filesystem::remove(temporary, ignored);
+        throw std::runtime_error("lut_generator: cannot rename " + temporary.string() + " to " + path.string() +
+                                 ": " + error.message());
+    }
+}
+
+std::string read_whole_file(const std::filesystem::path& path)
+{
+    std::ifstream file(path, std::ios::binary);
+    if (!file)
+    {
+        throw std::runtime_error("lut_generator: cannot open " + path.string() + ": " + std::strerror(errno));
+    }
+    std::ostringstream contents;
+    contents << file.rdbuf();
+    if (file.bad())
+    {
+        throw std::runtime_error("lut_generator: cannot read " + path.string());
+    }
+    return contents.str();
+}
+
+void check_finite(const std::vector<float>& data, const std::filesystem::path& path)
+{
+    for (std::size_t i = 0; i < data.size(); ++i)
+    {
+        if (!std::isfinite(data[i]))
+        {
+            throw std::runtime_error("lut_generator: value " + std::to_string(i) + " to be written to " +
+                                     path.string() + " is not finite");
+        }
+    }
+}
+
+}  // namespace
+
+// ---- Layout --------------------------------------------------------------------------------
+
+const char* lut_table_name(const int table)
+{
+    check_table(table);
+    static const char* const names[lut_table_count] = {"ggx_albedo", "dielectric_reflection",
+                                                       "dielectric_transmission", "dielectric_interface",
+                                                       "ggx_anisotropy_ratio"};
+    return names[table];
+}
+
+int LutLayout::dimensions(const int table) const
+{
+    check_table(table);
+    return table == lut_table_ggx_albedo ? 2 : table == lut_table_ggx_anisotropy_ratio ? 4 : 3;
+}
+
+int LutLayout::size(const int table) const
+{
+    const int d = dimensions(table);
+    return d == 2 ? size_2d : d == 3 ? size_3d : size_4d;
+}
+
+int LutLayout::axis_size(const int table, const int axis) const
+{
+    if (axis < 0 || axis >= dimensions(table))
+    {
+        throw std::invalid_argument("lut_generator: table " + std::to_string(table) + " has no axis " +
+                                    std::to_string(axis));
+    }
+    return axis >= 2 && dimensions(table) == 4 ? size_4d_anisotropy : size(table);
+}
+
+std::size_t LutLayout::count(const int table) const
+{
+    std::size_t result = 1;
+    for (int axis = 0; axis < dimensions(table); ++axis)
+    {
+        result *= std::size_t(std::max(axis_size(table, axis), 0));
+    }
+    return result;
+}
+
+std::size_t LutLayout::offset(const int table) const
+{
+    check_table(table);
+    std::size_t result = 0;
+    for (int t = 0; t < table; ++t)
+    {
+        result += count(t);
+    }
+    return result;
+}
+
+std::size_t LutLayout::total_count() const { return offset(lut_table_count - 1) + count(lut_table_count - 1); }
+
+// LutLayout computes the offsets itself (for any sizes); these pin it to the header's macros.
+static_assert(OPENPBR_LUT_GGX_ALBEDO_OFFSET == 0, "table 0 must come first");
+static_assert(OPENPBR_LUT_DIELECTRIC_REFLECTION_OFFSET == OPENPBR_LUT_2D_SIZE * OPENPBR_LUT_2D_SIZE,
+              "table 1 must follow the 2D table");
+static_assert(OPENPBR_LUT_DIELECTRIC_TRANSMISSION_OFFSET ==
+                  OPENPBR_LUT_DIELECTRIC_REFLECTION_OFFSET +
+                      OPENPBR_LUT_3D_SIZE * OPENPBR_LUT_3D_SIZE * OPENPBR_LUT_3D_SIZE,
+              "table 2 must follow table 1");
+static_assert(OPENPBR_LUT_DIELECTRIC_INTERFACE_OFFSET ==
+                  OPENPBR_LUT_DIELECTRIC_TRANSMISSION_OFFSET + OPENPBR_LUT_3D_COUNT,
+              "table 3 must follow table 2");
+static_assert(OPENPBR_LUT_GGX_ANISOTROPY_RATIO_OFFSET == OPENPBR_LUT_DIELECTRIC_INTERFACE_OFFSET + OPENPBR_LUT_3D_COUNT,
+              "table 4 must follow table 3");
+static_assert(OPENPBR_LUT_4D_COUNT == OPENPBR_LUT_4D_SIZE * OPENPBR_LUT_4D_SIZE * OPENPBR_LUT_4D_ANISOTROPY_SIZE *
+                                          OPENPBR_LUT_4D_ANISOTROPY_SIZE,
+              "table 4 has N x N x M x M nodes");
+static_assert(OPENPBR_LUT_TOTAL_COUNT == OPENPBR_LUT_GGX_ANISOTROPY_RATIO_OFFSET + OPENPBR_LUT_4D_COUNT,
+              "table 4 must be the last table");
+
+LutLayout compiled_lut_layout()
+{
+    return LutLayout{OPENPBR_LUT_2D_SIZE, OPENPBR_LUT_3D_SIZE, OPENPBR_LUT_4D_SIZE, OPENPBR_LUT_4D_ANISOTROPY_SIZE};
+}
+
+// ---- Estimator -----------------------------------------------------------------------------
+
+// Inverses of the axis coordinates of slang/openpbr_lut.h.
+double lut_eta_from_coordinate(const double x)
+{
+    const double c = std::clamp(x, 0.0, 1.0) - 0.5;
+    const double y = (c < 0.0 ? -2.0 : 2.0) * c * c;
+    return (1.0 + y) / (1.0 - y);
+}
+
+double lut_alpha_from_coordinate(const double r)
+{
+    const double c = std::clamp(r, 0.0, 1.0);
+    return std::max(c * c, minimum_alpha);
+}
+
+double lut_mu_from_coordinate(const double mu)
+{
+    const double c = std::clamp(mu, 0.0, 1.0);
+    return std::max(c * c, minimum_mu);
+}
+
+double lut_anisotropy_from_coordinate(const double a)
+{
+    const double c = 1.0 - std::clamp(a, 0.0, 1.0);
+    return 1.0 - c * c;
+}
+
+// The same expression as openpbr_lut_azimuth_coordinate (see there), in double.
+double lut_azimuth_coordinate(const double mu, const double r, const double a, const double cos_phi_squared)
+{
+    const double b = 1.0 - std::clamp(a, 0.0, 1.0);
+    const double cos_theta = std::clamp(mu, minimum_mu, 1.0);
+    const double alpha = lut_alpha_from_coordinate(r);
+    const double alpha_t_squared = alpha * alpha * (2.0 / (1.0 + b * b));
+    const double x = alpha_t_squared * (1.0 - cos_theta * cos_theta) / (cos_theta * cos_theta);
+    const double cos_squared = std::clamp(cos_phi_squared, 0.0, 1.0);
+    const double q_squared = cos_squared + b * b * (1.0 - cos_squared);
+    const double s_1 = std::sqrt(1.0 + x);
+    const double s_b = std::sqrt(1.0 + x * b * b);
+    const double s_q = std::sqrt(1.0 + x * q_squared);
+    return std::clamp(cos_squared * (s_1 + s_b) * (s_1 + 1.0) / ((s_q + s_b) * (s_q + 1.0)), 0.0, 1.0);
+}
+
+double lut_cos_phi_squared_from_coordinate(const double phi, const double mu, const double r, const double a)
+{
+    const double target = std::clamp(phi, 0.0, 1.0);
+    if (target <= 0.0 || target >= 1.0)
+    {
+        return target;  // the map fixes both ends
+    }
+    double low = 0.0;
+    double high = 1.0;
+    for (int iteration = 0; iteration < 64 && high - low > 1e-16; ++iteration)
+    {
+        const double middle = 0.5 * (low + high);
+        (lut_azimuth_coordinate(mu, r, a, middle) < target ? low : high) = middle;
+    }
+    return 0.5 * (low + high);
+}
+
+std::uint64_t lut_cell_seed(const int table, const std::size_t cell, const std::uint64_t generator_seed)
+{
+    const std::uint64_t stream = mix64(generator_seed + 0x9E3779B97F4A7C15ull * std::uint64_t(table + 1));
+    return mix64(stream ^ std::uint64_t(cell));
+}
+
+double estimate_lut_entry(const int table, const double mu, const double r, const double x,
+                          const std::uint32_t samples, const std::uint64_t seed)
+{
+    return estimate_lut_entry(table, mu, r, x, 0.0, samples, seed);
+}
+
+double estimate_lut_entry(const int table, const double mu, const double r, const double x, const double phi,
+                          const std::uint32_t samples, const std::uint64_t seed)
+{
+    check_table(table);
+    if (samples == 0)
+    {
+        throw std::invalid_argument("lut_generator: samples must be at least 1");
+    }
+    const double mu_value = lut_mu_from_coordinate(mu);
+    const double sin_theta = std::sqrt(1.0 - mu_value * mu_value);
+    CellSetup cell;
+    cell.table = table;
+    cell.view = vec3(float(sin_theta), 0.0f, float(mu_value));
+    cell.alpha = vec2(float(lut_alpha_from_coordinate(r)));
+    cell.eta = float(lut_eta_from_coordinate(x));
+    if (table == lut_table_ggx_anisotropy_ratio)
+    {
+        // OpenPBR's anisotropy mapping (openpbr_ggx_alpha) on the floored isotropic alpha, so at
+        // a = 0 both lobes are table 0's; the view azimuth follows from the phi coordinate.
+        const double r_value = std::clamp(r, 0.0, 1.0);
+        const double anisotropy = lut_anisotropy_from_coordinate(x);
+        const double b = 1.0 - anisotropy;
+        const double alpha_t = lut_alpha_from_coordinate(r_value) * std::sqrt(2.0 / (1.0 + b * b));
+        const double cos_phi_squared = lut_cos_phi_squared_from_coordinate(phi, mu_value, r_value, anisotropy);
+        cell.view = vec3(float(sin_theta * std::sqrt(cos_phi_squared)),
+                         float(sin_theta * std::sqrt(1.0 - cos_phi_squared)), float(mu_value));
+        cell.alpha = vec2(float(alpha_t), float(std::max(b * alpha_t, 1e-7)));
+        cell.eta = 1.0f;
+    }
+    cell.lambda_view = openpbr_ggx_lambda(cell.view, cell.alpha);
+    cell.inverse_g1_view = 1.0f + cell.lambda_view;
+    // Table 4's denominator: the isotropic lobe of table 0 at the same (rotated) view.
+    CellSetup isotropic_cell = cell;
+    isotropic_cell.alpha = vec2(float(lut_alpha_from_coordinate(r)));
+    isotropic_cell.lambda_view = openpbr_ggx_lambda(isotropic_cell.view, isotropic_cell.alpha);
+    isotropic_cell.inverse_g1_view = 1.0f + isotropic_cell.lambda_view;
+
+    // Random digital shift (xor of the same random bits into every point): keeps the net
+    // structure of the sequence and makes each cell's estimate unbiased and independent.
+    const std::uint32_t shift_x = std::uint32_t(seed);
+    const std::uint32_t shift_y = std::uint32_t(seed >> 32);
+    double sum = 0.0;
+    double isotropic_sum = 0.0;
+    for (std::uint32_t i = 0; i < samples; ++i)
+    {
+        const vec2 u(bits_to_unit_float(reverse_bits(i) ^ shift_x),
+                     bits_to_unit_float(sobol_second_dimension(i) ^ shift_y));
+        const vec3 h = openpbr_sample_vndf_spherical_cap(cell.view, cell.alpha, u);
+        sum += double(sample_weight(cell, h));
+        if (table == lut_table_ggx_anisotropy_ratio)
+        {
+            // The same points for both lobes: their errors are correlated and largely cancel in
+            // the ratio, and at a = 0 (equal lobes) the ratio is exactly 1.
+            const vec3 isotropic_h = openpbr_sample_vndf_spherical_cap(isotropic_cell.view, isotropic_cell.alpha, u);
+            isotropic_sum += double(sample_weight(isotropic_cell, isotropic_h));
+        }
+    }
+    if (table == lut_table_ggx_anisotropy_ratio)
+    {
+        return isotropic_sum > 0.0 ? sum / isotropic_sum : 1.0;
+    }
+    return sum / double(samples);
+}
+
+float round_to_half(const float value)
+{
+    if (!std::isfinite(value))
+    {
+        return value;
+    }
+    const float magnitude = std::fabs(value);
+    constexpr float smallest_normal_half = 6.103515625e-05f;  // 2^-14
+    if (magnitude < smallest_normal_half)
+    {
+        // Half subnormals are multiples of 2^-24; v * 2^24 < 2^10 is exact, rint ties to even.
+        return std::nearbyint(value * 16777216.0f) * (1.0f / 16777216.0f);
+    }
+    // Keep 10 of the 23 mantissa bits, rounding to nearest, ties to even; a carry out of the
+    // mantissa correctly increments the exponent.
+    std::uint32_t bits = 0;
+    std::memcpy(&bits, &value, sizeof(bits));
+    bits += 0x00000FFFu + ((bits >> 13) & 1u);
+    bits &= ~0x00001FFFu;
+    float rounded = 0.0f;
+    std::memcpy(&rounded, &bits, sizeof(rounded));
+    constexpr float largest_half = 65504.0f;
+    if (std::fabs(rounded) > largest_half)
+    {
+        return std::copysign(std::numeric_limits<float>::infinity(), value);
+    }
+    return rounded;
+}
+
+std::string describe(const LutGeneratorOptions& options)
+{
+    const LutLayout layout = options.layout();
+    std::ostringstream text;
+    const bool valid = layout.size_2d >= 2 && layout.size_3d >= 2 && layout.size_4d >= 2 && layout.size_4d_anisotropy >= 2;
+    text << "openpbr lutgen: 2D " << options.size_2d << ", 3D " << options.size_3d << ", 4D " << options.size_4d << "x"
+         << options.size_4d << "x" << options.size_4d_anisotropy << "x" << options.size_4d_anisotropy << ", "
+         << options.samples << " samples/cell, " << (options.bits == 16 ? "half-rounded" : "float32") << ", "
+         << (valid ? layout.total_count() : 0) << " values";
+    if (options.seed != 0)
+    {
+        text << ", seed " << options.seed;
+    }
+    if (layout != compiled_lut_layout())
+    {
+        text << " (not the compiled layout " << OPENPBR_LUT_2D_SIZE << " / " << OPENPBR_LUT_3D_SIZE << " / "
+             << OPENPBR_LUT_4D_SIZE << " / " << OPENPBR_LUT_4D_ANISOTROPY_SIZE << ")";
+    }
+    return text.str();
+}
+
+std::vector<float> generate_lut(const LutGeneratorOptions& options)
+{
+    if (options.size_2d < 2 || options.size_2d > maximum_size_2d || options.size_3d < 2 ||
+        options.size_3d > maximum_size_3d || options.size_4d < 2 || options.size_4d > maximum_size_4d ||
+        options.size_4d_anisotropy < 2 || options.size_4d_anisotropy > maximum_size_4d)
+    {
+        throw std::invalid_argument("lut_generator: table sizes must be in [2, " + std::to_string(maximum_size_2d) +
+                                    "] (2D), [2, " + std::to_string(maximum_size_3d) + "] (3D) and [2, " +
+                                    std::to_string(maximum_size_4d) + "] (4D), got " + std::to_string(options.size_2d) +
+                                    ", " + std::to_string(options.size_3d) + ", " + std::to_string(options.size_4d) +
+                                    " and " + std::to_string(options.size_4d_anisotropy));
+    }
+    if (options.samples == 0)
+    {
+        throw std::invalid_argument("lut_generator: samples must be at least 1");
+    }
+    if (options.bits != 16 && options.bits != 32)
+    {
+        throw std::invalid_argument("lut_generator: bits must be 16 or 32, got " + std::to_string(options.bits));
+    }
+    if (options.threads < 0)
+    {
+        throw std::invalid_argument("lut_generator: threads must be >= 0 (0: all cores), got " +
+                                    std::to_string(options.threads));
+    }
+
+    const LutLayout layout = options.layout();
+    const std::size_t total = layout.total_count();
+    std::vector<float> data(total, 0.0f);
+    const bool terminal = OPENPBR_LUTGEN_ISATTY(OPENPBR_LUTGEN_FILENO(stderr)) != 0;
+    ProgressBar progress(total, options.progress_always || (options.progress && terminal), terminal);
+
+    std::size_t offsets[lut_table_count];
+    for (int t = 0; t < lut_table_count; ++t)
+    {
+        offsets[t] = layout.offset(t);
+    }
+    auto compute_cell = [&](const std::size_t index) {
+        int table = lut_table_count - 1;
+        while (index < offsets[table])
+        {
+            --table;
+        }
+        const std::size_t local = index - offsets[table];
+        // Node coordinates, mu fastest; the x axis is eta (3D) or the anisotropy (4D).
+        double coordinates[4] = {0.0, 0.0, 0.5, 0.0};
+        std::size_t rest = local;
+        for (int axis = 0; axis < layout.dimensions(table); ++axis)
+        {
+            const std::size_t n = std::size_t(layout.axis_size(table, axis));
+            coordinates[axis] = double(rest % n) / double(n - 1);
+            rest /= n;
+        }
+        const double value = estimate_lut_entry(table, coordinates[0], coordinates[1], coordinates[2], coordinates[3],
+                                                options.samples, lut_cell_seed(table, local, options.seed));
+        data[index] = options.bits == 16 ? round_to_half(float(value)) : float(value);
+        progress.cell_done();
+    };
+
+    tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
+    arena.execute([&] {
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, total, 4),
+                          [&](const tbb::blocked_range<std::size_t>& range) {
+                              for (std::size_t index = range.begin(); index != range.end(); ++index)
+                              {
+                                  compute_cell(index);
+                              }
+                          });
+    });
+    progress.finish();
+    return data;
+}
+
+// ---- Files ---------------------------------------------------------------------------------
+
+void write_lut_values_inc(const std::filesystem::path& path, const std::vector<float>& data,
+                          const std::string& comment)
+{
+    check_finite(data, path);
+    std::string text;
+    text.reserve(data.size() * 18 + comment.size() + 64);
+    if (!comment.empty())
+    {
+        std::istringstream lines(comment);
+        std::string line;
+        while (std::getline(lines, line))
+        {
+            text += "// " + line + "\n";
+        }
+    }
+    char literal[48];
+    for (std::size_t i = 0; i < data.size(); ++i)
+    {
+        // "%.8e": 9 significant digits, enough for any float to round-trip; the exponent makes
+        // the literal a floating constant in GLSL, so the "f" suffix is valid there too.
+        std::snprintf(literal, sizeof(literal), "%.8ef%s\n", double(data[i]), i + 1 < data.size() ? "," : "");
+        text += literal;
+    }
+    write_file_atomically(path, text);
+}
+
+std::vector<float> read_lut_values_inc(const std::filesystem::path& path)
+{
+    const std::string text = read_whole_file(path);
+    std::vector<float> values;
+    std::istringstream lines(text);
+    std::string line;
+    int line_number = 0;
+    bool expect_more = false;  // the previous value ended with a comma
+    while (std::getline(lines, line))
+    {
+        ++line_number;
+        const std::size_t comment = line.find("//");
+        if (comment != std::string::npos)
+        {
+            line.erase(comment);
+        }
+        std::size_t position = 0;
+        while (position < line.size())
+        {
+            const std::size_t comma = line.find(',', position);
+            const std::size_t length = comma == std::string::npos ? std::string::npos : comma - position;
+            const std::string token = line.substr(position, length);
+            position = comma == std::string::npos ? line.size() : comma + 1;
+            const std::size_t first = token.find_first_not_of(" \t\r");
+            if (first == std::string::npos)
+            {
+                if (comma != std::string::npos)
+                {
+                    throw std::runtime_error("lut_generator: " + path.string() + ":" + std::to_string(line_number) +
+                                             ": empty value between commas");
+                }
+                continue;
+            }
+            const std::size_t last = token.find_last_not_of(" \t\r");
+            std::string literal = token.substr(first, last - first + 1);
+            if (!literal.empty() && (literal.back() == 'f' || literal.back() == 'F'))
+            {
+                literal.pop_back();
+            }
+            char* end = nullptr;
+            errno = 0;
+            const float value = std::strtof(literal.c_str(), &end);
+            if (literal.empty() || end != literal.c_str() + literal.size() || errno == ERANGE)
+            {
+                throw std::runtime_error("lut_generator: " + path.string() + ":" + std::to_string(line_number) +
+                                         ": malformed value '" + token.substr(first, last - first + 1) + "'");
+            }
+            if (!values.empty() && !expect_more)
+            {
+                throw std::runtime_error("lut_generator: " + path.string() + ":" + std::to_string(line_number) +
+                                         ": missing comma before '" + literal + "'");
+            }
+            values.push_back(value);
+            expect_more = comma != std::string::npos;
+        }
+    }
+    return values;
+}
+
+void write_lut_binary(const std::filesystem::path& path, const std::vector<float>& data)
+{
+    check_finite(data, path);
+    std::string bytes(data.size() * sizeof(float), '\0');
+    const bool swap = !host_is_little_endian();
+    for (std::size_t i = 0; i < data.size(); ++i)
+    {
+        std::uint32_t bits = 0;
+        std::memcpy(&bits, &data[i], sizeof(bits));
+        if (swap)
+        {
+            bits = byte_swap(bits);
+        }
+        std::memcpy(&bytes[i * sizeof(bits)], &bits, sizeof(bits));
+    }
+    write_file_atomically(path, bytes);
+}
+
+std::vector<float> read_lut_binary(const std::filesystem::path& path, const std::size_t expected_count)
+{
+    const std::string bytes = read_whole_file(path);
+    if (bytes.size() % sizeof(float) != 0)
+    {
+        throw std::runtime_error("lut_generator: " + path.string() + " has " + std::to_string(bytes.size()) +
+                                 " bytes, not a whole number of float32 values");
+    }
+    const std::size_t count = bytes.size() / sizeof(float);
+    if (expected_count != 0 && count != expected_count)
+    {
+        throw std::runtime_error("lut_generator: " + path.string() + " holds " + std::to_string(count) +
+                                 " values, expected " + std::to_string(expected_count) + " (" +
+                                 std::to_string(expected_count * sizeof(float)) + " bytes)");
+    }
+    std::vector<float> data(count);
+    const bool swap = !host_is_little_endian();
+    for (std::size_t i = 0; i < count; ++i)
+    {
+        std::uint32_t bits = 0;
+        std::memcpy(&bits, &bytes[i * sizeof(bits)], sizeof(bits));
+        if (swap)
+        {
+            bits = byte_swap(bits);
+        }
+        std::memcpy(&data[i], &bits, sizeof(bits));
+    }
+    return data;
+}
+
+double max_abs_difference(const std::vector<float>& a, const std::vector<float>& b, const int table,
+                          const LutLayout& layout)
+{
+    check_table(table);
+    const std::size_t total = layout.total_count();
+    if (a.size() != total || b.size() != total)
+    {
+        throw std::invalid_argument("lut_generator: max_abs_difference needs two arrays of " + std::to_string(total) +
+                                    " values (layout " + std::to_string(layout.size_2d) + " / " +
+                                    std::to_string(layout.size_3d) + " / " + std::to_string(layout.size_4d) + " / " +
+                                    std::to_string(layout.size_4d_anisotropy) + "), got " + std::to_string(a.size()) +
+                                    " and " + std::to_string(b.size()));
+    }
+    const std::size_t begin = layout.offset(table);
+    const std::size_t end = begin + layout.count(table);
+    double result = 0.0;
+    for (std::size_t i = begin; i < end; ++i)
+    {
+        result = std::max(result, std::fabs(double(a[i]) - double(b[i])));
+    }
+    return result;
+}
+
+}  // namespace openpbr::host
