@@ -1,7 +1,7 @@
 // White furnace: the directional albedo of white materials, which must be 1 where the model
 // is energy conserving and never above 1 (spec "White furnace testing"; docs/spec-notes.md 12).
 // The configuration list is shared by `openpbr furnace` and the statistical test suite
-// (tests/test_bsdf_statistics.cpp), so the command reports exactly what ctest checks.
+// (tests/bsdf/test_bsdf_statistics.cpp), so the command reports exactly what ctest checks.
 #ifndef OPENPBR_HOST_FURNACE_H
 #define OPENPBR_HOST_FURNACE_H
 

@@ -14,7 +14,7 @@
 //     flipping the frame (heights and directions negated, eta inverted).
 // The walk restricted to one bounce is the single-scattering BSDF with height-correlated Smith
 // masking-shadowing (Heitz 2014, eq. 99 for reflection), which
-// microsurface_single_scattering_albedo integrates by quadrature; tests/accuracy checks both.
+// microsurface_single_scattering_albedo integrates by quadrature; tests/studies checks both.
 #pragma once
 
 #include <cstdint>

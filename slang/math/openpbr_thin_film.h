@@ -57,7 +57,7 @@
 // negative lobes of the RGB sensitivities, so the colour of a 0.3-1 um film can be off by up
 // to ~0.2 near grazing (mean error 0.004-0.02).
 //
-// Measured against a brute-force spectral reference (1 nm steps, tests/test_thin_film.cpp),
+// Measured against a brute-force spectral reference (1 nm steps, tests/bsdf/test_thin_film.cpp),
 // films 0.1-1 um: full model max error 0.002 (dielectric base, cos >= 0.2), 0.004 (metals),
 // 0.008 down to cos = 0.01; zero thickness matches the base Fresnel within 1e-5.
 #ifndef OPENPBR_THIN_FILM_H

@@ -1,5 +1,5 @@
 // Implementation of the statistical test machinery; see bsdf_statistics.h.
-#include "tests/statistical/bsdf_statistics.h"
+#include "tests/bsdf/bsdf_statistics.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>

@@ -1,7 +1,7 @@
 // Basic invariants of the OpenPBR BSDF over random materials and directions, shading-frame
 // construction, and opacity. Every parameter of OpenPBR_ResolvedInputs is randomized, so lobes
 // added later (coat, fuzz, transmission, thin film, volumes) are covered without changes here.
-#include "tests/statistical/bsdf_statistics.h"
+#include "tests/bsdf/bsdf_statistics.h"
 
 #include <gtest/gtest.h>
 

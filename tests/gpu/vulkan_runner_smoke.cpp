@@ -9,7 +9,7 @@
 // MESA_SHADER_CACHE_DIR is set to a temporary directory unless the caller set it.
 // Needs glslangValidator on PATH and the Khronos validation layer.
 
-#include "../host/gpu/vulkan_runner.h"
+#include "host/gpu/vulkan_runner.h"
 
 #include <algorithm>
 #include <cstdio>

@@ -6,7 +6,7 @@
 // lobe is one entry of reciprocity_cases(). Every configuration is tested at each view cosine
 // of kViewCosines, on the sides it lists (outside: view above the geometric normal; inside:
 // below it) and for each IOR variant (e.g. eta and 1/eta for transmission).
-#include "tests/statistical/bsdf_statistics.h"
+#include "tests/bsdf/bsdf_statistics.h"
 #include "host/checks/furnace.h"
 
 #include <gtest/gtest.h>
