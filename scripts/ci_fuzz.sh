@@ -14,7 +14,8 @@ seconds=${OPENPBR_FUZZ_SECONDS:-60}
 generator=()
 command -v ninja >/dev/null && generator=(-G Ninja)
 cmake -S "$repo_root" -B "$build_dir" "${generator[@]}" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-  -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ -DOPENPBR_BUILD_HOST=OFF >/dev/null
+  -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ -DOPENPBR_BUILD_HOST=OFF \
+  -DOPENPBR_WARNINGS_AS_ERRORS="${OPENPBR_WARNINGS_AS_ERRORS:-OFF}" >/dev/null
 cmake --build "$build_dir" --target fuzz_bsdf
 fuzzer="$build_dir/fuzz/fuzz_bsdf"
 [[ -x "$fuzzer" ]] || { echo "ci_fuzz: $fuzzer was not built (clang with -fsanitize=fuzzer needed)" >&2; exit 1; }

@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Shared set-up for scripts/run.sh and scripts/test.sh on Debian 12: installs only what is
 # missing (apt-get), installs the Slang compiler (npm ci), configures and builds.
-# Environment: OPENPBR_BUILD_DIR (default build), OPENPBR_BUILD_TYPE (default RelWithDebInfo).
+# Environment: OPENPBR_BUILD_DIR (default build), OPENPBR_BUILD_TYPE (default RelWithDebInfo),
+# OPENPBR_WARNINGS_AS_ERRORS (unset: the cache's value, OFF in a new build; e.g. 1 in CI, which
+# .ci/run sets, for -Werror).
 set -euo pipefail
 repo_root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 build_dir=${OPENPBR_BUILD_DIR:-$repo_root/build}
@@ -45,7 +47,11 @@ fi
 
 generator=()
 command -v ninja >/dev/null && generator=(-G Ninja)
+configure_flags=()
+[[ -z "${OPENPBR_WARNINGS_AS_ERRORS:-}" ]] || configure_flags+=(-DOPENPBR_WARNINGS_AS_ERRORS="$OPENPBR_WARNINGS_AS_ERRORS")
 if [[ ! -f "$build_dir/CMakeCache.txt" ]]; then
-  cmake -S "$repo_root" -B "$build_dir" "${generator[@]}" -DCMAKE_BUILD_TYPE="$build_type"
+  cmake -S "$repo_root" -B "$build_dir" "${generator[@]}" -DCMAKE_BUILD_TYPE="$build_type" "${configure_flags[@]}"
+elif ((${#configure_flags[@]})); then
+  cmake -S "$repo_root" -B "$build_dir" "${configure_flags[@]}" >/dev/null
 fi
 cmake --build "$build_dir" --parallel "$(nproc)"
