@@ -67,7 +67,11 @@ struct OpenPBR_ResolvedInputs
     float geometry_opacity;     // [0,1], default 1
     bool geometry_thin_walled;  // default false
     OpenPBR_Basis geometry_basis;       // geometry_normal / geometry_tangent, default +z frame
-    OpenPBR_Basis geometry_coat_basis;  // geometry_coat_normal / geometry_coat_tangent
+    // geometry_coat_normal / geometry_coat_tangent. Default: all zero, meaning "the coat follows
+    // geometry_basis" (resolved in the input contract), so setting only geometry_basis tilts the
+    // coat with the base; set it, e.g. openpbr_make_basis(coat_normal, coat_tangent, 1.0f), for a
+    // coat frame of its own (spec "Coat": the coat normal defaults to the geometry normal).
+    OpenPBR_Basis geometry_coat_basis;
 
     // Extensions: rotation of the anisotropy direction about the normal as (cos, sin), e.g.
     // (0, 1) for 90 degrees; default (1, 0). Normalized in prepare; (0, 0) means no rotation.
@@ -120,7 +124,9 @@ OPENPBR_FUNC OpenPBR_ResolvedInputs openpbr_make_default_resolved_inputs()
     inputs.geometry_basis.tangent = vec3(1.0f, -0.0f, -0.0f);
     inputs.geometry_basis.bitangent = vec3(-0.0f, 1.0f, -0.0f);
     inputs.geometry_basis.normal = vec3(0.0f, 0.0f, 1.0f);
-    inputs.geometry_coat_basis = inputs.geometry_basis;
+    inputs.geometry_coat_basis.tangent = vec3(0.0f);
+    inputs.geometry_coat_basis.bitangent = vec3(0.0f);
+    inputs.geometry_coat_basis.normal = vec3(0.0f);
     inputs.specular_anisotropy_rotation = vec2(1.0f, 0.0f);
     inputs.coat_anisotropy_rotation = vec2(1.0f, 0.0f);
     return inputs;

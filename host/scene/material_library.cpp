@@ -142,7 +142,7 @@ struct SurfaceValues
 
 // Unset normals and tangents mean the unperturbed shading frame (+z normal, +x tangent), for
 // the coat as well: the spec lets the coat keep the smooth geometric normal when the base has
-// a normal map, so the coat basis does not follow geometry_normal.
+// a normal map, so in a file the coat basis does not follow geometry_normal.
 OpenPBR_Basis make_basis_from(const std::optional<glm::vec3>& normal, const std::optional<glm::vec3>& tangent)
 {
     const glm::vec3 resolved_normal = normal.value_or(glm::vec3(0.0f, 0.0f, 1.0f));
@@ -439,9 +439,18 @@ Material read_surface(const SourceFile& source, const std::string& document_colo
     }
     values.inputs.geometry_basis = make_basis_from(values.geometry_vectors[static_cast<std::size_t>(GeometryVector::normal)],
                                                    values.geometry_vectors[static_cast<std::size_t>(GeometryVector::tangent)]);
-    values.inputs.geometry_coat_basis =
-        make_basis_from(values.geometry_vectors[static_cast<std::size_t>(GeometryVector::coat_normal)],
-                        values.geometry_vectors[static_cast<std::size_t>(GeometryVector::coat_tangent)]);
+    // A file that sets no frame at all keeps the API's default coat basis (which follows the
+    // base frame, here the same unperturbed frame); one that perturbs only the base keeps the
+    // coat on the unperturbed frame, the spec's default geometry_coat_normal.
+    const std::optional<glm::vec3>& coat_normal = values.geometry_vectors[static_cast<std::size_t>(GeometryVector::coat_normal)];
+    const std::optional<glm::vec3>& coat_tangent = values.geometry_vectors[static_cast<std::size_t>(GeometryVector::coat_tangent)];
+    const bool any_frame_set = coat_normal || coat_tangent ||
+                               values.geometry_vectors[static_cast<std::size_t>(GeometryVector::normal)] ||
+                               values.geometry_vectors[static_cast<std::size_t>(GeometryVector::tangent)];
+    if (any_frame_set)
+    {
+        values.inputs.geometry_coat_basis = make_basis_from(coat_normal, coat_tangent);
+    }
 
     Material material;
     material.name = material_name;

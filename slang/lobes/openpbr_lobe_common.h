@@ -59,6 +59,36 @@ OPENPBR_FUNC OpenPBR_BsdfLobeType openpbr_lobe_type(uint lobe_id, uint flags)
     return (lobe_id << OPENPBR_LOBE_ID_SHIFT) | flags;
 }
 
+// Flag tests of a lobe type. A lobe type carries the lobe id above its flags, e.g. 521 =
+// OPENPBR_LOBE_ID_SPECULAR_REFLECTION << 8 | GLOSSY | REFLECTION, so comparing it with ==
+// against a flag fails; test the flags with these, e.g.
+// openpbr_lobe_type_is_specular(bsdf_sample.lobe_type).
+OPENPBR_FUNC bool openpbr_lobe_type_is_reflection(OpenPBR_BsdfLobeType lobe_type)
+{
+    return (lobe_type & OPENPBR_LOBE_TYPE_REFLECTION) != 0u;
+}
+OPENPBR_FUNC bool openpbr_lobe_type_is_transmission(OpenPBR_BsdfLobeType lobe_type)
+{
+    return (lobe_type & OPENPBR_LOBE_TYPE_TRANSMISSION) != 0u;
+}
+OPENPBR_FUNC bool openpbr_lobe_type_is_diffuse(OpenPBR_BsdfLobeType lobe_type)
+{
+    return (lobe_type & OPENPBR_LOBE_TYPE_DIFFUSE) != 0u;
+}
+OPENPBR_FUNC bool openpbr_lobe_type_is_glossy(OpenPBR_BsdfLobeType lobe_type)
+{
+    return (lobe_type & OPENPBR_LOBE_TYPE_GLOSSY) != 0u;
+}
+OPENPBR_FUNC bool openpbr_lobe_type_is_specular(OpenPBR_BsdfLobeType lobe_type)
+{
+    return (lobe_type & OPENPBR_LOBE_TYPE_SPECULAR) != 0u;
+}
+// The lobe's identity (OPENPBR_LOBE_ID_*), 0 for OPENPBR_LOBE_TYPE_NONE.
+OPENPBR_FUNC uint openpbr_lobe_type_id(OpenPBR_BsdfLobeType lobe_type)
+{
+    return lobe_type >> OPENPBR_LOBE_ID_SHIFT;
+}
+
 OPENPBR_NAMESPACE_END
 
 #endif
