@@ -20,6 +20,11 @@ include(CMakePackageConfigHelpers)
 # include their tables as generated/*.inc, and GPU callers upload generated/*.bin.
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/slang/ DESTINATION ${OPENPBR_INSTALL_INCLUDEDIR}/slang
   FILES_MATCHING PATTERN "*.h" PATTERN "*.inc" PATTERN "*.slang" PATTERN "*.bin")
+# Table files a build step writes into the build tree (e.g. an .inc form derived from the .bin)
+# join them there: the step appends its outputs to OPENPBR_GENERATED_TABLE_FILES.
+if(OPENPBR_GENERATED_TABLE_FILES)
+  install(FILES ${OPENPBR_GENERATED_TABLE_FILES} DESTINATION ${OPENPBR_INSTALL_INCLUDEDIR}/slang/generated)
+endif()
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/interop/ DESTINATION ${OPENPBR_INSTALL_INCLUDEDIR}/interop
   FILES_MATCHING PATTERN "*.h")
 

@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
 # The whole test suite: set up what is missing, build, run every test through ctest, then the
-# stability checks of docs/stability.md: the BSDF fuzzer for a bounded time (scripts/ci_fuzz.sh,
-# 60 s) and the CPU unit tests under ASan + UBSan (scripts/ci_sanitizers.sh). Every step runs
-# even when an earlier one fails; the script fails if any did. OPENPBR_SKIP_SANITIZERS=1 and
+# installed package as outside projects use it (scripts/ci_consumers.sh: install to a temporary
+# prefix, build and run the three consumers of examples/), then the stability checks of
+# docs/stability.md: the BSDF fuzzer for a bounded time (scripts/ci_fuzz.sh, 60 s) and the CPU
+# unit tests under ASan + UBSan (scripts/ci_sanitizers.sh). Every step runs even when an earlier
+# one fails; the script fails if any did. OPENPBR_SKIP_CONSUMERS=1, OPENPBR_SKIP_SANITIZERS=1 and
 # OPENPBR_SKIP_FUZZ=1 leave those steps out, e.g. for a quick local run.
 set -euo pipefail
 repo_root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
@@ -12,6 +14,9 @@ failed=()
 ctest_status=0
 ctest --test-dir "$build_dir" --output-on-failure --parallel "$(nproc)" "$@" || ctest_status=$?
 ((ctest_status == 0)) || failed+=(ctest)
+if [[ "${OPENPBR_SKIP_CONSUMERS:-0}" != 1 ]]; then
+  "$repo_root/scripts/ci_consumers.sh" || failed+=(ci_consumers)
+fi
 if [[ "${OPENPBR_SKIP_FUZZ:-0}" != 1 ]]; then
   "$repo_root/scripts/ci_fuzz.sh" || failed+=(ci_fuzz)
 fi
