@@ -1,0 +1,154 @@
+#!/usr/bin/env bash
+# gpu-check.sh - every GPU measurement of the project in one command, on a machine with a GPU
+# where the binaries exist (built here or built elsewhere and copied; docs/gpu.md):
+#
+#   scripts/gpu-check.sh RESULTS_DIR [BUILD_DIR]
+#
+#   RESULTS_DIR  where the results go (created), e.g. $OUT
+#   BUILD_DIR    the build folder holding `openpbr`, `kernels/` and `openpbr_cuda_conformance`;
+#                default: build under the repository root
+#
+# Steps (each runs even when an earlier one failed; a summary ends the run):
+#   1. environment: nvidia-smi, the Vulkan devices, the binaries' libraries
+#   2. conformance: every path (CPU paths that round like a GPU, five Vulkan paths, CUDA),
+#      OPENPBR_GPU_CHECK_QUERIES queries (default 10^6), per-kind metric and device times
+#   3. stability: the hard-case corpus on every GPU path (10^5 samples per case)
+#   4. bench gpu: device-timed prepare+eval / sample / pdf per material class
+#   5. bench specialization: full versus specialized pipelines, same timing
+#   6. gallery: the Vulkan path tracer at 1024 samples per pixel
+#
+# Every path the binaries read is passed explicitly, relative to the repository root and the
+# build folder, so a build made on another machine (other absolute paths) runs as it is.
+#
+# Environment (each optional):
+#   OPENPBR_GPU_CHECK_QUERIES  conformance queries, e.g. 1000000 (default)
+#   OPENPBR_GPU_CHECK_DEBS     a folder of .deb files (libvulkan1, the glvnd libraries, libtbb12,
+#                              libpugixml1v5, ...) extracted into RESULTS_DIR/sysroot and put on
+#                              LD_LIBRARY_PATH, for machines without those packages
+#   VK_DRIVER_FILES            the Vulkan driver manifest; default: NVIDIA's where it exists
+set -uo pipefail
+
+if [[ $# -lt 1 || $# -gt 2 || "$1" == "-h" || "$1" == "--help" ]]; then
+  sed -n '2,30p' "$0" | sed 's/^# \{0,1\}//'
+  exit 2
+fi
+repo_root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+results=$(mkdir -p "$1" && cd "$1" && pwd)
+build=$(cd "${2:-$repo_root/build}" 2>/dev/null && pwd) || { echo "gpu-check: no build folder ${2:-$repo_root/build}" >&2; exit 2; }
+queries=${OPENPBR_GPU_CHECK_QUERIES:-1000000}
+
+openpbr=$build/openpbr
+kernels=$build/kernels
+materials=$repo_root/materials
+corpus=$repo_root/tests/data/stability_corpus.json
+cuda_program=$build/openpbr_cuda_conformance
+log=$results/gpu-check.log
+: >"$log"
+
+say() { echo "$*" | tee -a "$log"; }
+
+# ---- Environment -------------------------------------------------------------------------------
+if [[ -n "${OPENPBR_GPU_CHECK_DEBS:-}" ]]; then
+  sysroot=$results/sysroot
+  mkdir -p "$sysroot"
+  for deb in "$OPENPBR_GPU_CHECK_DEBS"/*.deb; do
+    [[ -e "$deb" ]] && dpkg -x "$deb" "$sysroot"
+  done
+  export LD_LIBRARY_PATH="$sysroot/usr/lib/x86_64-linux-gnu${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
+fi
+if [[ -z "${VK_DRIVER_FILES:-}" && -z "${VK_ICD_FILENAMES:-}" ]]; then
+  for manifest in /usr/local/nvidia/share/vulkan/icd.d/nvidia_icd.json /usr/share/vulkan/icd.d/nvidia_icd.json \
+                  /etc/vulkan/icd.d/nvidia_icd.json; do
+    if [[ -f "$manifest" ]]; then
+      export VK_DRIVER_FILES=$manifest
+      break
+    fi
+  done
+fi
+# The CUDA program at this build's path, whatever path was baked in at configure time.
+export OPENPBR_CUDA_CONFORMANCE_PROGRAM=$cuda_program
+# A Mesa shader cache of our own (used only if the driver is Mesa's).
+export MESA_SHADER_CACHE_DIR=$results/mesa-shader-cache
+mkdir -p "$MESA_SHADER_CACHE_DIR"
+
+{
+  echo "date: $(date -u +%Y-%m-%dT%H:%M:%SZ)"
+  echo "host: $(uname -a)"
+  echo "repository: $repo_root"
+  echo "build: $build"
+  echo "VK_DRIVER_FILES=${VK_DRIVER_FILES:-}"
+  echo "LD_LIBRARY_PATH=${LD_LIBRARY_PATH:-}"
+  echo "OPENPBR_CUDA_CONFORMANCE_PROGRAM=$OPENPBR_CUDA_CONFORMANCE_PROGRAM"
+  echo "--- nvidia-smi"
+  nvidia-smi --query-gpu=name,driver_version,compute_cap,memory.total --format=csv 2>&1 || echo "(no nvidia-smi)"
+  echo "--- vulkaninfo --summary"
+  (command -v vulkaninfo >/dev/null && vulkaninfo --summary 2>&1 | head -60) || echo "(no vulkaninfo)"
+  echo "--- ldd openpbr"
+  ldd "$openpbr" 2>&1
+  echo "--- ldd openpbr_cuda_conformance"
+  ldd "$cuda_program" 2>&1
+} >"$results/environment.txt" 2>&1
+
+# ---- Steps -------------------------------------------------------------------------------------
+declare -a step_names=() step_status=() step_seconds=()
+
+# run_step NAME TIMEOUT_SECONDS COMMAND...: output to RESULTS_DIR/NAME.txt, status recorded.
+run_step() {
+  local name=$1 limit=$2
+  shift 2
+  say "== $name: $*"
+  local start=$SECONDS
+  timeout --kill-after=10 "$limit" "$@" >"$results/$name.txt" 2>&1
+  local status=$?
+  local seconds=$((SECONDS - start))
+  step_names+=("$name")
+  step_status+=("$status")
+  step_seconds+=("$seconds")
+  tail -n 40 "$results/$name.txt" | tee -a "$log" >/dev/null
+  say "== $name: exit $status after ${seconds} s$([[ $status -eq 124 || $status -eq 137 ]] && echo ' (time limit)')"
+}
+
+for required in "$openpbr" "$kernels/conformance.slang.spv"; do
+  [[ -e "$required" ]] || say "missing: $required (steps that need it will fail)"
+done
+[[ -x "$cuda_program" ]] || say "missing: $cuda_program (the CUDA paths will report 'not built')"
+
+common=(--kernel-dir "$kernels" --materials-dir "$materials")
+
+run_step conformance 240 "$openpbr" "${common[@]}" conformance --queries "$queries" \
+  --json "$results/conformance.json"
+run_step stability 150 "$openpbr" "${common[@]}" stability --corpus "$corpus" \
+  --paths slang-spirv glsl-spirv slang-hlsl slang-glsl hlsl cuda slang-cuda \
+  --gpu-samples 100000 --json "$results/stability.json"
+run_step bench-gpu 120 "$openpbr" "${common[@]}" bench gpu --queries 1048576 --repeats 10 \
+  --json "$results/bench-gpu.json"
+run_step bench-specialization 120 "$openpbr" "${common[@]}" bench specialization --queries 1000000 \
+  --repeats 10 --json "$results/bench-specialization.json"
+run_step gallery 150 "$openpbr" "${common[@]}" render --gallery --backend vulkan --spp 1024 --quiet \
+  -o "$results/gallery-1024spp.png" --json "$results/gallery.json"
+
+# ---- Summary -----------------------------------------------------------------------------------
+failed=0
+for status in "${step_status[@]}"; do
+  [[ $status -ne 0 ]] && failed=$((failed + 1))
+done
+{
+  echo "gpu-check summary ($(date -u +%Y-%m-%dT%H:%M:%SZ)), results in $results"
+  grep -m1 -A2 "^--- nvidia-smi" "$results/environment.txt" | tail -n 2
+  for index in "${!step_names[@]}"; do
+    status=${step_status[$index]}
+    verdict=ok
+    [[ $status -ne 0 ]] && verdict=FAILED
+    printf '  %-22s %-7s exit %3d  %4d s\n' "${step_names[$index]}" "$verdict" "$status" "${step_seconds[$index]}"
+  done
+  echo "conformance per path (per-kind metric verdict, device ns/query):"
+  grep -E "^  [a-z-]+ (\(|: not executed)|per kind:|device time" "$results/conformance.txt" 2>/dev/null | sed 's/^/  /'
+  echo "bench gpu:"
+  grep -E "device:|^  [a-z+]+ \(" "$results/bench-gpu.txt" 2>/dev/null | sed 's/^/  /'
+  echo "gallery:"
+  tail -n 3 "$results/gallery.txt" 2>/dev/null | sed 's/^/  /'
+  echo "$failed step(s) failed"
+} | tee "$results/summary.txt" | tee -a "$log" >/dev/null
+cat "$results/summary.txt"
+# Exit 1 when a step failed (every step ran regardless).
+[[ $failed -eq 0 ]]
