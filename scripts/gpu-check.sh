@@ -22,6 +22,8 @@
 #
 # Environment (each optional):
 #   OPENPBR_GPU_CHECK_QUERIES  conformance queries, e.g. 1000000 (default)
+#   OPENPBR_GPU_CHECK_SMOKE    1: tiny sizes everywhere (checks the script itself on a machine
+#                              without a GPU, e.g. on lavapipe in a minute or two)
 #   OPENPBR_GPU_CHECK_DEBS     a folder of .deb files (libvulkan1, the glvnd libraries, libtbb12,
 #                              libpugixml1v5, ...) extracted into RESULTS_DIR/sysroot and put on
 #                              LD_LIBRARY_PATH, for machines without those packages
@@ -36,6 +38,19 @@ repo_root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 results=$(mkdir -p "$1" && cd "$1" && pwd)
 build=$(cd "${2:-$repo_root/build}" 2>/dev/null && pwd) || { echo "gpu-check: no build folder ${2:-$repo_root/build}" >&2; exit 2; }
 queries=${OPENPBR_GPU_CHECK_QUERIES:-1000000}
+gpu_samples=100000
+bench_queries=1048576
+specialization_queries=1000000
+spp=1024
+render_size=()
+if [[ "${OPENPBR_GPU_CHECK_SMOKE:-0}" == 1 ]]; then
+  queries=${OPENPBR_GPU_CHECK_QUERIES:-2000}
+  gpu_samples=64
+  bench_queries=256
+  specialization_queries=1000
+  spp=1
+  render_size=(--size 256x128)
+fi
 
 openpbr=$build/openpbr
 kernels=$build/kernels
@@ -119,13 +134,13 @@ run_step conformance 240 "$openpbr" "${common[@]}" conformance --queries "$queri
   --json "$results/conformance.json"
 run_step stability 150 "$openpbr" "${common[@]}" stability --corpus "$corpus" \
   --paths slang-spirv glsl-spirv slang-hlsl slang-glsl hlsl cuda slang-cuda \
-  --gpu-samples 100000 --json "$results/stability.json"
-run_step bench-gpu 120 "$openpbr" "${common[@]}" bench gpu --queries 1048576 --repeats 10 \
+  --gpu-samples "$gpu_samples" --json "$results/stability.json"
+run_step bench-gpu 120 "$openpbr" "${common[@]}" bench gpu --queries "$bench_queries" --repeats 10 \
   --json "$results/bench-gpu.json"
-run_step bench-specialization 120 "$openpbr" "${common[@]}" bench specialization --queries 1000000 \
+run_step bench-specialization 120 "$openpbr" "${common[@]}" bench specialization --queries "$specialization_queries" \
   --repeats 10 --json "$results/bench-specialization.json"
-run_step gallery 150 "$openpbr" "${common[@]}" render --gallery --backend vulkan --spp 1024 --quiet \
-  -o "$results/gallery-1024spp.png" --json "$results/gallery.json"
+run_step gallery 150 "$openpbr" "${common[@]}" render --gallery --backend vulkan --spp "$spp" "${render_size[@]}" \
+  --quiet -o "$results/gallery-${spp}spp.png" --json "$results/gallery.json"
 
 # ---- Summary -----------------------------------------------------------------------------------
 failed=0
