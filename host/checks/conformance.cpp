@@ -563,6 +563,7 @@ SpecializedConformanceRun run_conformance_gpu_specialized(const std::string& pat
         timing.first_dispatch_ms = batch.timing.first_dispatch_ms;
         timing.dispatch_ms = batch.timing.dispatch_ms;
         timing.device_dispatch_ms = batch.timing.device_dispatch_ms;
+        timing.statistics = pipeline.statistics();
         run.dispatch_ms += batch.timing.dispatch_ms;
         if (batch.timing.device_dispatch_ms)
         {

@@ -187,6 +187,8 @@ struct SpecializedPipelineTiming
     double first_dispatch_ms = 0.0;
     double dispatch_ms = 0.0;
     std::optional<double> device_dispatch_ms;  // GPU timestamps, same rule as dispatch_ms
+    // The driver's statistics of the pipeline (ComputePipeline::statistics), after its dispatch.
+    std::vector<PipelineStatistic> statistics;
 };
 
 struct SpecializedConformanceRun

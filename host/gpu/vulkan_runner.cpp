@@ -230,6 +230,10 @@ struct ContextState {
     // same code with other specialization constants) can reuse the driver's work.
     VkPipelineCache pipeline_cache = VK_NULL_HANDLE;
     bool validation_active = false;
+    // VK_KHR_pipeline_executable_properties enabled (pipelines then capture statistics).
+    bool executable_statistics = false;
+    PFN_vkGetPipelineExecutablePropertiesKHR get_executable_properties = nullptr;
+    PFN_vkGetPipelineExecutableStatisticsKHR get_executable_statistics = nullptr;
     // Its address is handed to the messenger, so it lives here, in a heap object that never
     // moves, rather than in the movable VulkanContext.
     ValidationLog validation_log;
@@ -387,7 +391,39 @@ void create_device(ContextState& state) {
     device_info.sType = VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO;
     device_info.queueCreateInfoCount = 1;
     device_info.pQueueCreateInfos = &queue_info;
+
+    // Register counts, spills and the like per pipeline where the driver reports them
+    // (VK_KHR_pipeline_executable_properties; pipeline_statistics()).
+    uint32_t extension_count = 0;
+    vkEnumerateDeviceExtensionProperties(state.physical_device, nullptr, &extension_count, nullptr);
+    std::vector<VkExtensionProperties> extensions(extension_count);
+    vkEnumerateDeviceExtensionProperties(state.physical_device, nullptr, &extension_count, extensions.data());
+    const char* const executable_extension = VK_KHR_PIPELINE_EXECUTABLE_PROPERTIES_EXTENSION_NAME;
+    VkPhysicalDevicePipelineExecutablePropertiesFeaturesKHR executable_features{};
+    executable_features.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PIPELINE_EXECUTABLE_PROPERTIES_FEATURES_KHR;
+    const bool has_extension = std::any_of(extensions.begin(), extensions.end(), [&](const VkExtensionProperties& e) {
+        return std::strcmp(e.extensionName, executable_extension) == 0;
+    });
+    if (has_extension && state.properties.apiVersion >= VK_API_VERSION_1_1) {
+        VkPhysicalDeviceFeatures2 features{};
+        features.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2;
+        features.pNext = &executable_features;
+        vkGetPhysicalDeviceFeatures2(state.physical_device, &features);
+    }
+    if (executable_features.pipelineExecutableInfo == VK_TRUE) {
+        device_info.pNext = &executable_features;
+        device_info.enabledExtensionCount = 1;
+        device_info.ppEnabledExtensionNames = &executable_extension;
+    }
     check(vkCreateDevice(state.physical_device, &device_info, nullptr, &state.device), "vkCreateDevice");
+    if (executable_features.pipelineExecutableInfo == VK_TRUE) {
+        state.get_executable_properties = reinterpret_cast<PFN_vkGetPipelineExecutablePropertiesKHR>(
+            vkGetDeviceProcAddr(state.device, "vkGetPipelineExecutablePropertiesKHR"));
+        state.get_executable_statistics = reinterpret_cast<PFN_vkGetPipelineExecutableStatisticsKHR>(
+            vkGetDeviceProcAddr(state.device, "vkGetPipelineExecutableStatisticsKHR"));
+        state.executable_statistics =
+            state.get_executable_properties != nullptr && state.get_executable_statistics != nullptr;
+    }
     vkGetDeviceQueue(state.device, state.queue_family_index, 0, &state.queue);
 
     VkCommandPoolCreateInfo pool_info{};
@@ -587,6 +623,7 @@ ComputePipeline::ComputePipeline(const VulkanContext& context,
     pipeline_info.stage.pName = description.entry_point.c_str();
     pipeline_info.stage.pSpecializationInfo = map_entries.empty() ? nullptr : &specialization;
     pipeline_info.layout = state.pipeline_layout;
+    if (context_state.executable_statistics) pipeline_info.flags |= VK_PIPELINE_CREATE_CAPTURE_STATISTICS_BIT_KHR;
     check(vkCreateComputePipelines(device, context_state.pipeline_cache, 1, &pipeline_info, nullptr,
                                    &state.pipeline),
           "vkCreateComputePipelines");
@@ -602,6 +639,58 @@ ComputePipeline& ComputePipeline::operator=(ComputePipeline&&) noexcept = defaul
 ComputePipeline::~ComputePipeline() = default;
 
 double ComputePipeline::create_ms() const { return state_->create_ms; }
+
+std::vector<PipelineStatistic> ComputePipeline::statistics() const {
+    const ContextState& context = *state_->context;
+    std::vector<PipelineStatistic> result;
+    if (!context.executable_statistics) return result;
+    VkPipelineInfoKHR pipeline_info{};
+    pipeline_info.sType = VK_STRUCTURE_TYPE_PIPELINE_INFO_KHR;
+    pipeline_info.pipeline = state_->pipeline;
+    uint32_t executable_count = 0;
+    if (context.get_executable_properties(context.device, &pipeline_info, &executable_count, nullptr) != VK_SUCCESS) {
+        return result;
+    }
+    std::vector<VkPipelineExecutablePropertiesKHR> executables(executable_count);
+    for (VkPipelineExecutablePropertiesKHR& executable : executables) {
+        executable.sType = VK_STRUCTURE_TYPE_PIPELINE_EXECUTABLE_PROPERTIES_KHR;
+    }
+    if (context.get_executable_properties(context.device, &pipeline_info, &executable_count, executables.data()) !=
+        VK_SUCCESS) {
+        return result;
+    }
+    for (uint32_t index = 0; index < executable_count; ++index) {
+        VkPipelineExecutableInfoKHR executable_info{};
+        executable_info.sType = VK_STRUCTURE_TYPE_PIPELINE_EXECUTABLE_INFO_KHR;
+        executable_info.pipeline = state_->pipeline;
+        executable_info.executableIndex = index;
+        uint32_t statistic_count = 0;
+        if (context.get_executable_statistics(context.device, &executable_info, &statistic_count, nullptr) !=
+            VK_SUCCESS) {
+            continue;
+        }
+        std::vector<VkPipelineExecutableStatisticKHR> statistics(statistic_count);
+        for (VkPipelineExecutableStatisticKHR& statistic : statistics) {
+            statistic.sType = VK_STRUCTURE_TYPE_PIPELINE_EXECUTABLE_STATISTIC_KHR;
+        }
+        if (context.get_executable_statistics(context.device, &executable_info, &statistic_count,
+                                              statistics.data()) != VK_SUCCESS) {
+            continue;
+        }
+        for (const VkPipelineExecutableStatisticKHR& statistic : statistics) {
+            double value = 0.0;
+            switch (statistic.format) {
+                case VK_PIPELINE_EXECUTABLE_STATISTIC_FORMAT_BOOL32_KHR: value = statistic.value.b32 ? 1.0 : 0.0; break;
+                case VK_PIPELINE_EXECUTABLE_STATISTIC_FORMAT_INT64_KHR: value = double(statistic.value.i64); break;
+                case VK_PIPELINE_EXECUTABLE_STATISTIC_FORMAT_UINT64_KHR: value = double(statistic.value.u64); break;
+                case VK_PIPELINE_EXECUTABLE_STATISTIC_FORMAT_FLOAT64_KHR: value = statistic.value.f64; break;
+                default: continue;
+            }
+            result.push_back({std::string(executables[index].name) + ": " + statistic.name, value});
+        }
+    }
+    return result;
+}
 const std::vector<BindingLayout>& ComputePipeline::bindings() const { return state_->bindings; }
 uint32_t ComputePipeline::push_constant_size() const { return state_->push_constant_size; }
 

@@ -115,6 +115,13 @@ struct DispatchTiming {
     int dispatch_count = 0;
 };
 
+// One statistic a driver reports for a pipeline (VK_KHR_pipeline_executable_properties), e.g.
+// {"<executable>: Register count", 96}.
+struct PipelineStatistic {
+    std::string name;
+    double value = 0.0;
+};
+
 struct ContextState;   // defined in vulkan_runner.cpp
 struct PipelineState;  // defined in vulkan_runner.cpp
 
@@ -178,6 +185,9 @@ public:
     // Time to create the shader module, layouts and pipeline. On lavapipe this is small:
     // llvmpipe compiles the shader at the first dispatch instead.
     double create_ms() const;
+    // The driver's statistics of this pipeline (register count, spills, ... as the driver names
+    // them) where it supports VK_KHR_pipeline_executable_properties; empty elsewhere.
+    std::vector<PipelineStatistic> statistics() const;
     const std::vector<BindingLayout>& bindings() const;
     uint32_t push_constant_size() const;
     // Implementation detail, public only for run().

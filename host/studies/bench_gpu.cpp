@@ -82,6 +82,7 @@ nlohmann::json run_gpu_bench(const GpuBenchOptions& options)
                  {std::pair<const char*, std::uint32_t>{"full", full_feature_mask()}, {"specialized", mask}})
             {
                 ComputePipeline& pipeline = cache->pipeline(pipeline_mask);
+                bool statistics_reported = false;
                 for (const Operation& operation : operations)
                 {
                     ConformanceDispatchSettings settings;
@@ -99,6 +100,18 @@ nlohmann::json run_gpu_bench(const GpuBenchOptions& options)
                         entry["vulkan"][pipeline_name][operation.name] = {
                             {"note", "the queue has no timestamps"},
                             {"host_ns_per_query", timing.dispatch_ms * 1e6 / double(options.queries)}};
+                    }
+                    if (!statistics_reported)
+                    {
+                        // After the first dispatch: lavapipe compiles there. Register count,
+                        // spills and the like where the driver reports them.
+                        nlohmann::json statistics = nlohmann::json::object();
+                        for (const PipelineStatistic& statistic : pipeline.statistics())
+                        {
+                            statistics[statistic.name] = statistic.value;
+                        }
+                        entry["vulkan"][std::string(pipeline_name) + "_statistics"] = statistics;
+                        statistics_reported = true;
                     }
                 }
             }

@@ -222,7 +222,15 @@ nlohmann::json run_specialization_bench(const SpecializationBenchOptions& option
                 entry["gpu_timing"] = run.device_dispatch_ms ? "device timestamps" : "host (no timestamps)";
                 for (const SpecializedPipelineTiming& pipeline : run.pipelines)
                 {
+                    // Register count, spills and the like where the driver reports them
+                    // (VK_KHR_pipeline_executable_properties): why a pipeline is or is not faster.
+                    nlohmann::json statistics = nlohmann::json::object();
+                    for (const PipelineStatistic& statistic : pipeline.statistics)
+                    {
+                        statistics[statistic.name] = statistic.value;
+                    }
                     report["pipelines"].push_back({{"scene", scene.name},
+                                                   {"statistics", statistics},
                                                    {"toggles", feature_names(pipeline.mask)},
                                                    {"create_ms", pipeline.create_ms},
                                                    {"first_dispatch_ms", pipeline.first_dispatch_ms},
@@ -278,6 +286,10 @@ std::string specialization_bench_text(const nlohmann::json& report)
         text << "  pipeline {" << (toggles.empty() ? "base" : toggles) << "} for " << pipeline["scene"].get<std::string>()
              << ": create " << pipeline["create_ms"].get<double>() << " ms + first dispatch "
              << pipeline["first_dispatch_ms"].get<double>() << " ms\n";
+        for (const auto& [name, value] : pipeline["statistics"].items())
+        {
+            text << "    " << name << ": " << value.get<double>() << "\n";
+        }
     }
     return text.str();
 }
