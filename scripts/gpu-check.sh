@@ -25,18 +25,28 @@
 #   OPENPBR_GPU_CHECK_QUERIES  conformance queries, e.g. 1000000 (default)
 #   OPENPBR_GPU_CHECK_SMOKE    1: tiny sizes everywhere (checks the script itself on a machine
 #                              without a GPU, e.g. on lavapipe in a minute or two)
-#   OPENPBR_GPU_CHECK_DEBS     a folder of .deb files (libvulkan1, the glvnd libraries, libtbb12,
-#                              libpugixml1v5, ...) extracted into RESULTS_DIR/sysroot and put on
-#                              LD_LIBRARY_PATH, for machines without those packages
+#   OPENPBR_GPU_CHECK_DEBS     a folder of .deb files (scripts/gpu-bundle.sh) for machines without
+#                              our packages: the Vulkan loader and glvnd libraries are extracted
+#                              into / (as root, when no libvulkan.so.1 is installed) and
+#                              ldconfig run; the others (TBB, pugixml) into a scratch folder put
+#                              on LD_LIBRARY_PATH
 #   VK_DRIVER_FILES            the Vulkan driver manifest; default: NVIDIA's where it exists
+#
+# RESULTS_DIR gets at most 8 files: summary.txt, results.tar.gz (every step's output and JSON,
+# the environment, the log), the gallery PNG and the JSON of conformance, stability, bench gpu
+# and bench specialization.
 set -uo pipefail
 
 if [[ $# -lt 1 || $# -gt 2 || "$1" == "-h" || "$1" == "--help" ]]; then
-  sed -n '2,30p' "$0" | sed 's/^# \{0,1\}//'
+  sed -n '2,/^set /p' "$0" | grep '^#' | sed 's/^# \{0,1\}//'
   exit 2
 fi
 repo_root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
-results=$(mkdir -p "$1" && cd "$1" && pwd)
+final=$(mkdir -p "$1" && cd "$1" && pwd)
+# Every step writes into a scratch folder; RESULTS_DIR gets the few files listed above.
+scratch=$(mktemp -d "${TMPDIR:-/tmp}/openpbr-gpu-check.XXXXXX")
+results=$scratch/results
+mkdir -p "$results"
 build=$(cd "${2:-$repo_root/build}" 2>/dev/null && pwd) || { echo "gpu-check: no build folder ${2:-$repo_root/build}" >&2; exit 2; }
 queries=${OPENPBR_GPU_CHECK_QUERIES:-1000000}
 gpu_samples=100000
@@ -65,12 +75,26 @@ say() { echo "$*" | tee -a "$log"; }
 
 # ---- Environment -------------------------------------------------------------------------------
 if [[ -n "${OPENPBR_GPU_CHECK_DEBS:-}" ]]; then
-  sysroot=$results/sysroot
+  debs=$(cd "$OPENPBR_GPU_CHECK_DEBS" && pwd)
+  sysroot=$scratch/sysroot
   mkdir -p "$sysroot"
-  for deb in "$OPENPBR_GPU_CHECK_DEBS"/*.deb; do
-    [[ -e "$deb" ]] && dpkg -x "$deb" "$sysroot"
+  loader_missing=0
+  ldconfig -p 2>/dev/null | grep -q 'libvulkan.so.1 ' || loader_missing=1
+  for deb in "$debs"/*.deb; do
+    [[ -e "$deb" ]] || continue
+    case $(basename "$deb") in
+      libvulkan1_*|libegl1_*|libglvnd0_*|libopengl0_*|libgl1_*|libglx0_*|libgles2_*)
+        # The loader and glvnd where the driver's libraries look for them (as the device notes
+        # did it); anything else stays out of /.
+        if [[ $loader_missing -eq 1 && $(id -u) -eq 0 ]]; then dpkg -x "$deb" /; else dpkg -x "$deb" "$sysroot"; fi ;;
+      *) dpkg -x "$deb" "$sysroot" ;;
+    esac
   done
-  export LD_LIBRARY_PATH="$sysroot/usr/lib/x86_64-linux-gnu${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
+  [[ $loader_missing -eq 1 && $(id -u) -eq 0 ]] && ldconfig
+  export LD_LIBRARY_PATH="${LD_LIBRARY_PATH:+$LD_LIBRARY_PATH:}$sysroot/usr/lib/x86_64-linux-gnu"
+fi
+if [[ -z "${__EGL_VENDOR_LIBRARY_FILENAMES:-}" && -f /usr/local/nvidia/share/glvnd/egl_vendor.d/10_nvidia.json ]]; then
+  export __EGL_VENDOR_LIBRARY_FILENAMES=/usr/local/nvidia/share/glvnd/egl_vendor.d/10_nvidia.json
 fi
 if [[ -z "${VK_DRIVER_FILES:-}" && -z "${VK_ICD_FILENAMES:-}" ]]; then
   for manifest in /usr/local/nvidia/share/vulkan/icd.d/nvidia_icd.json /usr/share/vulkan/icd.d/nvidia_icd.json \
@@ -84,7 +108,7 @@ fi
 # The CUDA program at this build's path, whatever path was baked in at configure time.
 export OPENPBR_CUDA_CONFORMANCE_PROGRAM=$cuda_program
 # A Mesa shader cache of our own (used only if the driver is Mesa's).
-export MESA_SHADER_CACHE_DIR=$results/mesa-shader-cache
+export MESA_SHADER_CACHE_DIR=$scratch/mesa-shader-cache
 mkdir -p "$MESA_SHADER_CACHE_DIR"
 
 {
@@ -131,14 +155,14 @@ done
 
 common=(--kernel-dir "$kernels" --materials-dir "$materials")
 
-run_step conformance 200 "$openpbr" "${common[@]}" conformance --queries "$queries" \
+run_step conformance 180 "$openpbr" "${common[@]}" conformance --queries "$queries" \
   --json "$results/conformance.json"
 run_step stability 110 "$openpbr" "${common[@]}" stability --corpus "$corpus" \
   --paths slang-spirv glsl-spirv slang-hlsl slang-glsl hlsl cuda slang-cuda \
   --gpu-samples "$gpu_samples" --json "$results/stability.json"
 run_step bench-gpu 130 "$openpbr" "${common[@]}" bench gpu --queries "$bench_queries" --repeats 10 \
   --json "$results/bench-gpu.json"
-run_step bench-specialization 80 "$openpbr" "${common[@]}" bench specialization --queries "$specialization_queries" \
+run_step bench-specialization 100 "$openpbr" "${common[@]}" bench specialization --queries "$specialization_queries" \
   --repeats 10 --json "$results/bench-specialization.json"
 run_step gallery 40 "$openpbr" "${common[@]}" render --gallery --backend vulkan --spp "$spp" "${render_size[@]}" \
   --quiet -o "$results/gallery-${spp}spp.png" --json "$results/gallery.json"
@@ -149,7 +173,7 @@ for status in "${step_status[@]}"; do
   [[ $status -ne 0 ]] && failed=$((failed + 1))
 done
 {
-  echo "gpu-check summary ($(date -u +%Y-%m-%dT%H:%M:%SZ)), results in $results"
+  echo "gpu-check summary ($(date -u +%Y-%m-%dT%H:%M:%SZ)), results in $final"
   grep -m1 -A2 "^--- nvidia-smi" "$results/environment.txt" | tail -n 2
   for index in "${!step_names[@]}"; do
     status=${step_status[$index]}
@@ -166,5 +190,11 @@ done
   echo "$failed step(s) failed"
 } | tee "$results/summary.txt" | tee -a "$log" >/dev/null
 cat "$results/summary.txt"
+cp "$results/summary.txt" "$final/summary.txt"
+for file in conformance.json stability.json bench-gpu.json bench-specialization.json "gallery-${spp}spp.png"; do
+  [[ -f "$results/$file" ]] && cp "$results/$file" "$final/$file"
+done
+tar -C "$scratch" -czf "$final/results.tar.gz" results
+echo "wrote $final: $(cd "$final" && ls | tr '\n' ' ')"
 # Exit 1 when a step failed (every step ran regardless).
 [[ $failed -eq 0 ]]
