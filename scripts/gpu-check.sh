@@ -120,7 +120,7 @@ mkdir -p "$MESA_SHADER_CACHE_DIR"
   echo "LD_LIBRARY_PATH=${LD_LIBRARY_PATH:-}"
   echo "OPENPBR_CUDA_CONFORMANCE_PROGRAM=$OPENPBR_CUDA_CONFORMANCE_PROGRAM"
   echo "--- nvidia-smi"
-  nvidia-smi --query-gpu=name,driver_version,compute_cap,memory.total --format=csv 2>&1 || echo "(no nvidia-smi)"
+  nvidia-smi --query-gpu=name,driver_version,compute_cap,memory.total --format=csv 2>/dev/null || echo "(no nvidia-smi)"
   echo "--- vulkaninfo --summary"
   (command -v vulkaninfo >/dev/null && vulkaninfo --summary 2>&1 | head -60) || echo "(no vulkaninfo)"
   echo "--- ldd openpbr"
@@ -182,7 +182,7 @@ done
     printf '  %-22s %-7s exit %3d  %4d s\n' "${step_names[$index]}" "$verdict" "$status" "${step_seconds[$index]}"
   done
   echo "conformance per path (per-kind metric verdict, device ns/query):"
-  grep -E "^  [a-z-]+ (\(|: not executed)|per kind:|device time" "$results/conformance.txt" 2>/dev/null | sed 's/^/  /'
+  grep -E "^  [a-z-]+( \(|: not executed)|per kind:|device time|^      [a-z.]+ (p99.9|max) of error" "$results/conformance.txt" 2>/dev/null | sed 's/^/  /'
   echo "bench gpu:"
   grep -E "device:|^  [a-z_+]+ \(" "$results/bench-gpu.txt" 2>/dev/null | sed 's/^/  /'
   echo "gallery:"
