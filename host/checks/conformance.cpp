@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstring>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <random>
 #include <sstream>
@@ -13,6 +14,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include "host/checks/conformance_cpu_variants.h"
 #include "host/gpu/cuda_conformance.h"
 #include "host/scene/features.h"
 #include "host/gpu/shipped_tables.h"
@@ -33,6 +35,27 @@ float* results = nullptr;
 #include "targets/kernels/openpbr_conformance_kernel.h"
 
 namespace openpbr::host {
+
+#if !OPENPBR_CONFORMANCE_CPU_FMA_BUILT
+std::vector<float> run_conformance_cpu_fma(const std::vector<float>&, const std::vector<float>&)
+{
+    throw std::logic_error("cpu-fma was not built (conformance_cpu_fma_unavailable_reason)");
+}
+std::vector<float> run_conformance_cpu_fast(const std::vector<float>&, const std::vector<float>&)
+{
+    throw std::logic_error("cpu-fast was not built (conformance_cpu_fma_unavailable_reason)");
+}
+#endif
+
+std::string conformance_cpu_fma_unavailable_reason()
+{
+#if OPENPBR_CONFORMANCE_CPU_FMA_BUILT
+    __builtin_cpu_init();
+    return __builtin_cpu_supports("fma") ? "" : "this CPU has no FMA instructions";
+#else
+    return "not built: the compiler does not accept -mfma or the target is not x86-64";
+#endif
+}
 
 namespace {
 
@@ -55,6 +78,9 @@ const char* slot_name(int slot)
                                   "sample.lobe_type", "emission.r", "emission.g", "emission.b"};
     return slot < 21 ? names[slot] : "unused";
 }
+
+// Sign patterns of nudge_directions: the CPU's condition is the largest change over them.
+constexpr int conformance_nudge_patterns = 4;
 
 double relative_error(float gpu, float cpu)
 {
@@ -110,7 +136,8 @@ ComputePipelineDescription conformance_pipeline_description(const GpuPath& path,
 }
 
 GpuBatchResult dispatch_conformance(ComputePipeline& pipeline, const std::vector<float>& queries,
-                                    const std::vector<float>& materials, int repeats)
+                                    const std::vector<float>& materials, int repeats,
+                                    const ConformanceDispatchSettings& settings = {})
 {
     const std::size_t query_count = queries.size() / OPENPBR_QUERY_FLOATS;
 
@@ -119,16 +146,39 @@ GpuBatchResult dispatch_conformance(ComputePipeline& pipeline, const std::vector
     std::vector<std::byte> query_bytes = to_bytes(queries);
     std::vector<std::byte> material_bytes = to_bytes(materials);
     std::vector<std::byte> result_bytes(query_count * OPENPBR_RESULT_FLOATS * sizeof(float));
-    std::vector<std::byte> parameter_bytes = to_bytes(std::vector<std::uint32_t>{std::uint32_t(query_count), 0, 0, 0});
+    std::vector<std::byte> parameter_bytes =
+        to_bytes(std::vector<std::uint32_t>{std::uint32_t(query_count), settings.mode, 0, 0});
     const std::vector<BufferBinding> buffers = {{0, &lut_bytes, false},       {1, &fuzz_bytes, false},
                                                 {2, &query_bytes, false},     {3, &material_bytes, false},
                                                 {4, &parameter_bytes, false}, {5, &result_bytes, true}};
     const std::uint32_t groups = std::uint32_t((query_count + 63) / 64);
     GpuBatchResult batch;
-    batch.timing = run(pipeline, buffers, groups, 1, 1, repeats);
+    DispatchRequest request;
+    request.groups_x = groups;
+    request.repeats = repeats;
+    request.device_local = settings.device_local;
+    batch.timing = run(pipeline, buffers, request);
     batch.results = from_bytes<float>(result_bytes);
     return batch;
 }
+
+}  // namespace
+
+ComputePipelineDescription conformance_pipeline_description(const std::string& path_name,
+                                                            const std::string& kernel_directory)
+{
+    return conformance_pipeline_description(find_gpu_path(path_name), kernel_directory);
+}
+
+ConformanceDispatch dispatch_conformance_pipeline(ComputePipeline& pipeline, const std::vector<float>& queries,
+                                                  const std::vector<float>& materials, int repeats,
+                                                  const ConformanceDispatchSettings& settings)
+{
+    GpuBatchResult batch = dispatch_conformance(pipeline, queries, materials, repeats, settings);
+    return {std::move(batch.results), batch.timing};
+}
+
+namespace {
 
 GpuBatchResult execute_gpu_path(const GpuPath& path, VulkanContext& context, const std::vector<float>& queries,
                                 const std::vector<float>& materials, const std::string& kernel_directory)
@@ -137,28 +187,19 @@ GpuBatchResult execute_gpu_path(const GpuPath& path, VulkanContext& context, con
     return dispatch_conformance(pipeline, queries, materials, 3);
 }
 
-// Compares one path's results with the CPU build's (see the foundation issue's metrics).
-void compare_with_cpu(ConformancePathResult& result, const std::vector<float>& queries,
-                      const std::vector<float>& gpu_results, const std::vector<float>& cpu_results)
+// The pooled metric: every compared slot's relative error (floor 1e-3) in one population.
+void compare_pooled(ConformancePathResult& result, const std::vector<float>& queries,
+                    const std::vector<float>& gpu_results, const std::vector<float>& cpu_results)
 {
     const std::size_t query_count = queries.size() / OPENPBR_QUERY_FLOATS;
     std::vector<double> errors;
     errors.reserve(query_count * (eval_slot_end + sample_slot_end - sample_slot_begin + 3));
-    std::size_t mismatches = 0;
     double worst = -1.0;
     for (std::size_t query = 0; query < query_count; ++query)
     {
         const float* gpu = gpu_results.data() + query * OPENPBR_RESULT_FLOATS;
         const float* cpu = cpu_results.data() + query * OPENPBR_RESULT_FLOATS;
-        for (int slot = 0; slot < emission_slot_end; ++slot)
-        {
-            if (!std::isfinite(gpu[slot]))
-            {
-                ++result.nonfinite;
-            }
-        }
         const bool lobes_agree = gpu[lobe_type_slot] == cpu[lobe_type_slot];
-        mismatches += lobes_agree ? 0 : 1;
         auto compare = [&](int begin, int end) {
             for (int slot = begin; slot < end; ++slot)
             {
@@ -184,6 +225,239 @@ void compare_with_cpu(ConformancePathResult& result, const std::vector<float>& q
     std::sort(errors.begin(), errors.end());
     result.max_relative_error = errors.empty() ? 0.0 : errors.back();
     result.p999_relative_error = errors.empty() ? 0.0 : errors[std::size_t(0.999 * double(errors.size() - 1))];
+}
+
+// One channel of the per-kind metric while it is being filled.
+struct ChannelAccumulator
+{
+    ConformanceChannel channel;
+    std::vector<double> errors;
+    std::vector<double> p999_ratios;  // error / its p99.9 allowance (docs/conformance.md)
+    double max_ratio = 0.0;          // largest error / its max allowance
+
+    // A non-finite error (NaN on one side) is the worst possible value.
+    static double finite_or_worst(double value)
+    {
+        return std::isnan(value) ? std::numeric_limits<double>::infinity() : value;
+    }
+
+    void add(double error, double p999_ratio, double max_ratio_of_value, std::size_t query, float gpu, double cpu)
+    {
+        const double value = finite_or_worst(error);
+        errors.push_back(value);
+        p999_ratios.push_back(finite_or_worst(p999_ratio));
+        const double ratio = finite_or_worst(max_ratio_of_value);
+        if (errors.size() == 1 || ratio > max_ratio)
+        {
+            max_ratio = ratio;
+            std::ostringstream where;
+            where << "query " << query << ": gpu " << gpu << ", cpu " << cpu << ", relative error " << value;
+            channel.worst = where.str();
+        }
+    }
+
+    ConformanceChannel finish()
+    {
+        // Selection, not a sort: 22 channels of 10^6 values per path.
+        auto p999 = [](std::vector<double>& values) {
+            if (values.empty())
+            {
+                return 0.0;
+            }
+            const auto rank = values.begin() + std::ptrdiff_t(0.999 * double(values.size() - 1));
+            std::nth_element(values.begin(), rank, values.end());
+            return *rank;
+        };
+        channel.count = errors.size();
+        channel.max = errors.empty() ? 0.0 : *std::max_element(errors.begin(), errors.end());
+        channel.p999 = p999(errors);
+        channel.p999_bound_ratio = p999(p999_ratios);
+        channel.max_bound_ratio = max_ratio;
+        return channel;
+    }
+};
+
+
+// Angle between two directions, radians: 2 asin(|a/|a| - b/|b|| / 2) stays accurate for tiny
+// angles, where acos of the dot product loses everything below about 3e-4 rad in float and
+// 2e-8 in double.
+double angle_between(const float* a, const float* b)
+{
+    const double length_a = std::sqrt(double(a[0]) * a[0] + double(a[1]) * a[1] + double(a[2]) * a[2]);
+    const double length_b = std::sqrt(double(b[0]) * b[0] + double(b[1]) * b[1] + double(b[2]) * b[2]);
+    if (!(length_a > 0.0) || !(length_b > 0.0))
+    {
+        return std::numeric_limits<double>::infinity();
+    }
+    double chord = 0.0;
+    for (int axis = 0; axis < 3; ++axis)
+    {
+        const double difference = double(a[axis]) / length_a - double(b[axis]) / length_b;
+        chord += difference * difference;
+    }
+    return 2.0 * std::asin(std::min(1.0, 0.5 * std::sqrt(chord)));
+}
+
+bool is_delta_lobe(float lobe_type)
+{
+    return (std::uint32_t(lobe_type) & OPENPBR_LOBE_TYPE_SPECULAR) != 0u;
+}
+
+// Compares one path's results with the CPU build's: the per-kind metric (docs/conformance.md)
+// and the pooled one. Sampled outputs are chaotic in the last bit of the random numbers, so a
+// continuous sample is checked for consistency: its weight and pdf against the CPU's eval and
+// pdf at the path's own direction (the CPU kernel run again, same materials and views, with the
+// light set to that direction). Delta samples (weight and pdf independent of a warp) and the
+// direction (as an angle) are compared with the CPU's sample where the lobes agree.
+void compare_with_cpu(ConformancePathResult& result, const std::vector<float>& queries,
+                      const std::vector<float>& materials, const std::vector<float>& gpu_results,
+                      const std::vector<float>& cpu_results)
+{
+    const std::size_t query_count = queries.size() / OPENPBR_QUERY_FLOATS;
+    compare_pooled(result, queries, gpu_results, cpu_results);
+
+    // The CPU at each continuous GPU sample's direction (slots 0-6: eval and pdf there).
+    std::vector<float> at_gpu_direction_queries = queries;
+    for (std::size_t query = 0; query < query_count; ++query)
+    {
+        const float* gpu = gpu_results.data() + query * OPENPBR_RESULT_FLOATS;
+        float* light = at_gpu_direction_queries.data() + query * OPENPBR_QUERY_FLOATS + 4;
+        if (gpu[lobe_type_slot] != 0.0f && !is_delta_lobe(gpu[lobe_type_slot]))
+        {
+            std::copy(gpu + sample_slot_begin, gpu + sample_slot_begin + 3, light);
+        }
+    }
+    const std::vector<float> at_gpu_direction = run_conformance_cpu(at_gpu_direction_queries, materials);
+    // The CPU's own sensitivity: the same queries with view and light moved by one ulp.
+    std::vector<std::vector<float>> cpu_nudged;
+    std::vector<std::vector<float>> at_gpu_direction_nudged;
+    for (int pattern = 0; pattern < conformance_nudge_patterns; ++pattern)
+    {
+        cpu_nudged.push_back(run_conformance_cpu(nudge_directions(queries, pattern), materials));
+        at_gpu_direction_nudged.push_back(
+            run_conformance_cpu(nudge_directions(at_gpu_direction_queries, pattern), materials));
+    }
+    const ConformanceTolerances& tolerances = conformance_tolerances();
+
+    // Channels in report order: eval.diffuse rgb (0-2), eval.specular rgb (3-5), pdf (6),
+    // emission rgb (7-9), sample.consistency.pdf (10), its weight.diffuse rgb (11-13) and
+    // weight.specular rgb (14-16), sample.delta.pdf (17), its weight.specular rgb (18-20),
+    // sample.direction.angle (21).
+    static const char* const channel_names[] = {
+        "eval.diffuse.r", "eval.diffuse.g", "eval.diffuse.b", "eval.specular.r", "eval.specular.g", "eval.specular.b",
+        "pdf", "emission.r", "emission.g", "emission.b", "sample.consistency.pdf",
+        "sample.consistency.weight.diffuse.r", "sample.consistency.weight.diffuse.g",
+        "sample.consistency.weight.diffuse.b", "sample.consistency.weight.specular.r",
+        "sample.consistency.weight.specular.g", "sample.consistency.weight.specular.b", "sample.delta.pdf",
+        "sample.delta.weight.specular.r", "sample.delta.weight.specular.g", "sample.delta.weight.specular.b",
+        "sample.direction.angle"};
+    constexpr int eval_diffuse = 0, eval_specular = 3, pdf_channel = 6, emission = 7, consistency_pdf = 10,
+                  consistency_diffuse = 11, consistency_specular = 14, delta_pdf = 17, delta_specular = 18,
+                  direction_angle = 21, channel_count = 22;
+    std::vector<ChannelAccumulator> channels(channel_count);
+    for (int index = 0; index < channel_count; ++index)
+    {
+        channels[std::size_t(index)].channel.name = channel_names[index];
+        channels[std::size_t(index)].channel.angle = index == direction_angle;
+        channels[std::size_t(index)].errors.reserve(query_count);
+    }
+
+    std::size_t mismatches = 0;
+    for (std::size_t query = 0; query < query_count; ++query)
+    {
+        const float* gpu = gpu_results.data() + query * OPENPBR_RESULT_FLOATS;
+        const float* cpu = cpu_results.data() + query * OPENPBR_RESULT_FLOATS;
+        const float* cpu_there = at_gpu_direction.data() + query * OPENPBR_RESULT_FLOATS;
+        const std::size_t record = query * OPENPBR_RESULT_FLOATS;
+        // The largest change of a value over the nudged runs; `value(run)` reads it from one.
+        auto largest_change = [&](double cpu_value, const auto& value) {
+            double change = 0.0;
+            for (int pattern = 0; pattern < conformance_nudge_patterns; ++pattern)
+            {
+                change = std::max(change, std::fabs(value(pattern) - cpu_value));
+            }
+            return change;
+        };
+        for (int slot = 0; slot < emission_slot_end; ++slot)
+        {
+            if (!std::isfinite(gpu[slot]))
+            {
+                ++result.nonfinite;
+            }
+        }
+        // A value's allowance: the relative bound (of max(|cpu|, floor)), or the CPU's own change
+        // under a one-ulp move of its input directions times condition_factor, the larger.
+        auto relative = [&](int index, float gpu_value, double cpu_value, double change) {
+            const double difference = std::fabs(double(gpu_value) - cpu_value);
+            const double scale = std::max(std::fabs(cpu_value), tolerances.relative_floor);
+            const double sensitivity = tolerances.condition_factor * change;
+            channels[std::size_t(index)].add(difference / scale,
+                                             difference / std::max(tolerances.relative_p999 * scale, sensitivity),
+                                             difference / std::max(tolerances.relative_max * scale, sensitivity), query,
+                                             gpu_value, cpu_value);
+        };
+        for (int c = 0; c < 3; ++c)
+        {
+            for (const int slot : {c, 3 + c, emission_slot_begin + c})
+            {
+                const int index = slot < 3 ? eval_diffuse + c : slot < 6 ? eval_specular + c : emission + c;
+                relative(index, gpu[slot], cpu[slot],
+                         largest_change(cpu[slot], [&](int pattern) { return double(cpu_nudged[std::size_t(pattern)][record + std::size_t(slot)]); }));
+            }
+        }
+        relative(pdf_channel, gpu[6], cpu[6],
+                 largest_change(cpu[6], [&](int pattern) { return double(cpu_nudged[std::size_t(pattern)][record + 6]); }));
+
+        const float gpu_lobe = gpu[lobe_type_slot];
+        const bool lobes_agree = gpu_lobe == cpu[lobe_type_slot];
+        mismatches += lobes_agree ? 0 : 1;
+        if (gpu_lobe != 0.0f && !is_delta_lobe(gpu_lobe))
+        {
+            // weight = eval / pdf at the sample's direction (slang/openpbr_bsdf.h, openpbr_sample).
+            const double pdf_there = cpu_there[6];
+            auto ratio = [](double value, double pdf) { return pdf > 0.0 ? value / pdf : 0.0; };
+            auto there = [&](int pattern, int slot) {
+                return double(at_gpu_direction_nudged[std::size_t(pattern)][record + std::size_t(slot)]);
+            };
+            relative(consistency_pdf, gpu[16], pdf_there,
+                     largest_change(pdf_there, [&](int pattern) { return there(pattern, 6); }));
+            for (int c = 0; c < 3; ++c)
+            {
+                for (const int slot : {c, 3 + c})
+                {
+                    const double expected = ratio(cpu_there[slot], pdf_there);
+                    relative((slot < 3 ? consistency_diffuse : consistency_specular) + c, gpu[10 + slot], expected,
+                             largest_change(expected, [&](int pattern) { return ratio(there(pattern, slot), there(pattern, 6)); }));
+                }
+            }
+        }
+        if (lobes_agree && gpu_lobe != 0.0f)
+        {
+            const double angle = angle_between(gpu + sample_slot_begin, cpu + sample_slot_begin);
+            channels[direction_angle].add(angle, angle / tolerances.angle_p999, angle / tolerances.angle_max, query,
+                                          gpu[sample_slot_begin], cpu[sample_slot_begin]);
+            if (is_delta_lobe(gpu_lobe))
+            {
+                // A nudged run whose lobe differs says nothing about this one's condition.
+                auto same_lobe = [&](int slot) {
+                    return [&, slot](int pattern) {
+                        const float* nudged = cpu_nudged[std::size_t(pattern)].data() + record;
+                        return nudged[lobe_type_slot] == gpu_lobe ? double(nudged[slot]) : double(cpu[slot]);
+                    };
+                };
+                relative(delta_pdf, gpu[16], cpu[16], largest_change(cpu[16], same_lobe(16)));
+                for (int c = 0; c < 3; ++c)
+                {
+                    relative(delta_specular + c, gpu[13 + c], cpu[13 + c], largest_change(cpu[13 + c], same_lobe(13 + c)));
+                }
+            }
+        }
+    }
+    result.channels.clear();
+    for (ChannelAccumulator& accumulator : channels)
+    {
+        result.channels.push_back(accumulator.finish());
+    }
     result.lobe_mismatch_fraction = query_count ? double(mismatches) / double(query_count) : 0.0;
 }
 
@@ -220,13 +494,17 @@ ConformancePathResult run_gpu_path(const GpuPath& path, VulkanContext& context, 
     result.note = context.device_name();
     result.first_dispatch_ms = timing.first_dispatch_ms;
     result.queries_per_second = timing.dispatch_ms > 0.0 ? double(query_count) / (timing.dispatch_ms * 1e-3) : 0.0;
+    if (timing.device_dispatch_ms && query_count > 0)
+    {
+        result.device_ns_per_query = *timing.device_dispatch_ms * 1e6 / double(query_count);
+    }
     const std::vector<std::string> messages = context.validation_messages();
     result.validation_messages = messages.size();
     if (!messages.empty())
     {
         result.note += "; validation: " + messages.front();
     }
-    compare_with_cpu(result, queries, batch.results, cpu_results);
+    compare_with_cpu(result, queries, materials, batch.results, cpu_results);
     return result;
 }
 
@@ -243,7 +521,8 @@ SpecializedConformanceRun run_conformance_gpu_specialized(const std::string& pat
                                                           const std::vector<float>& queries,
                                                           const std::vector<Material>& materials,
                                                           const std::string& kernel_directory,
-                                                          std::optional<std::uint32_t> pipeline_mask, int repeats)
+                                                          std::optional<std::uint32_t> pipeline_mask, int repeats,
+                                                          const ConformanceDispatchSettings& settings)
 {
     if (pipeline_mask)
     {
@@ -276,7 +555,7 @@ SpecializedConformanceRun run_conformance_gpu_specialized(const std::string& pat
         }
         const std::size_t builds_before = cache.build_count();
         ComputePipeline& pipeline = cache.pipeline(mask);
-        const GpuBatchResult batch = dispatch_conformance(pipeline, group_queries, packed, repeats);
+        const GpuBatchResult batch = dispatch_conformance(pipeline, group_queries, packed, repeats, settings);
         for (std::size_t i = 0; i < members.size(); ++i)
         {
             std::memcpy(&run.results[members[i] * OPENPBR_RESULT_FLOATS], &batch.results[i * OPENPBR_RESULT_FLOATS],
@@ -289,11 +568,67 @@ SpecializedConformanceRun run_conformance_gpu_specialized(const std::string& pat
         timing.create_ms = pipeline.create_ms();
         timing.first_dispatch_ms = batch.timing.first_dispatch_ms;
         timing.dispatch_ms = batch.timing.dispatch_ms;
+        timing.device_dispatch_ms = batch.timing.device_dispatch_ms;
+        timing.statistics = pipeline.statistics();
         run.dispatch_ms += batch.timing.dispatch_ms;
+        if (batch.timing.device_dispatch_ms)
+        {
+            run.device_dispatch_ms = run.device_dispatch_ms.value_or(0.0) + *batch.timing.device_dispatch_ms;
+        }
         run.pipelines.push_back(timing);
     }
     run.pipeline_builds = cache.build_count();
     return run;
+}
+
+std::vector<std::string> cpu_conformance_paths()
+{
+    return {"cpu-fma", "cpu-fast", "cpu-ulp"};
+}
+
+std::vector<float> nudge_random_numbers(const std::vector<float>& queries)
+{
+    std::vector<float> nudged = queries;
+    for (std::size_t record = 0; record + OPENPBR_QUERY_FLOATS <= nudged.size(); record += OPENPBR_QUERY_FLOATS)
+    {
+        for (int k = 7; k < 10; ++k)
+        {
+            // Up by one ulp, or down at the largest float below 1 (u stays in [0, 1)).
+            float& u = nudged[record + std::size_t(k)];
+            u = u < 0.99999994f ? std::nextafter(u, 1.0f) : std::nextafter(u, 0.0f);
+        }
+    }
+    return nudged;
+}
+
+std::vector<float> nudge_directions(const std::vector<float>& queries, int pattern)
+{
+    // Signs per view and light component: rotations by about one ulp of angle about two
+    // different axes, which normalization does not undo (moving every component away from zero
+    // would mostly scale the vectors).
+    static const float signs[conformance_nudge_patterns][6] = {
+        {1, -1, 1, -1, 1, -1}, {1, 1, -1, -1, -1, 1}, {-1, 1, 1, 1, -1, -1}, {1, 1, 1, -1, 1, 1}};
+    const float* sign = signs[std::size_t(pattern) % conformance_nudge_patterns];
+    std::vector<float> nudged = queries;
+    for (std::size_t record = 0; record + OPENPBR_QUERY_FLOATS <= nudged.size(); record += OPENPBR_QUERY_FLOATS)
+    {
+        for (int k = 1; k < 7; ++k)
+        {
+            float& component = nudged[record + std::size_t(k)];
+            component = std::nextafter(component, 2.0f * sign[k - 1]);
+        }
+    }
+    return nudged;
+}
+
+std::vector<std::string> all_conformance_paths()
+{
+    std::vector<std::string> names = cpu_conformance_paths();
+    for (const std::string& name : known_conformance_paths())
+    {
+        names.push_back(name);
+    }
+    return names;
 }
 
 std::vector<std::string> known_conformance_paths()
@@ -413,7 +748,7 @@ std::vector<float> run_conformance_cpu(const std::vector<float>& queries, const 
     cpu_kernel::materials = materials.data();
     cpu_kernel::results = results.data();
     tbb::parallel_for(std::size_t(0), query_count,
-                      [](std::size_t query) { openpbr::openpbr_conformance_run_query(unsigned(query)); });
+                      [](std::size_t query) { openpbr::openpbr_conformance_run_query(unsigned(query), OPENPBR_CONFORMANCE_MODE_ALL); });
     return results;
 }
 
@@ -443,7 +778,44 @@ ConformanceReport run_conformance(const std::vector<Material>& materials, const 
         }
     }
 
-    std::vector<std::string> wanted = options.paths.empty() ? known_conformance_paths() : options.paths;
+    std::vector<std::string> wanted = options.paths.empty() ? all_conformance_paths() : options.paths;
+    // CPU paths that round like a GPU, and the CPU itself with every random number moved by one
+    // ulp (how chaotic the sampled outputs are: docs/conformance.md).
+    for (const std::string& name : cpu_conformance_paths())
+    {
+        if (std::find(wanted.begin(), wanted.end(), name) == wanted.end())
+        {
+            continue;
+        }
+        ConformancePathResult result;
+        result.name = name;
+        result.pipeline_count = 0;
+        const std::string reason = name == "cpu-ulp" ? std::string() : conformance_cpu_fma_unavailable_reason();
+        if (!reason.empty())
+        {
+            result.note = reason;
+            report.paths.push_back(result);
+            continue;
+        }
+        const auto start = std::chrono::steady_clock::now();
+        std::vector<float> results;
+        if (name == "cpu-ulp")
+        {
+            result.note = "CPU build, u moved by one ulp";
+            results = run_conformance_cpu(nudge_random_numbers(queries), packed);
+        }
+        else
+        {
+            result.note = name == "cpu-fma" ? "CPU, -mfma -ffp-contract=fast"
+                                            : "CPU, -mfma -ffp-contract=fast -freciprocal-math, fast sqrt/normalize";
+            results = name == "cpu-fma" ? run_conformance_cpu_fma(queries, packed) : run_conformance_cpu_fast(queries, packed);
+        }
+        const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        result.queries_per_second = seconds > 0.0 ? double(queries.size() / OPENPBR_QUERY_FLOATS) / seconds : 0.0;
+        result.executed = true;
+        compare_with_cpu(result, queries, packed, results, cpu_results);
+        report.paths.push_back(result);
+    }
     std::string context_error;
     VulkanOptions vulkan_options;
     vulkan_options.enable_validation = options.validation;
@@ -482,12 +854,50 @@ ConformanceReport run_conformance(const std::vector<Material>& materials, const 
             result.note = external.note;
             if (external.executed)
             {
-                compare_with_cpu(result, queries, external.results, cpu_results);
+                const auto all = external.device_ns_per_query.find("all");
+                if (all != external.device_ns_per_query.end() && all->second > 0.0)
+                {
+                    result.device_ns_per_query = all->second;
+                    result.queries_per_second = 1e9 / all->second;
+                }
+                compare_with_cpu(result, queries, packed, external.results, cpu_results);
             }
             report.paths.push_back(result);
         }
     }
     return report;
+}
+
+const ConformanceTolerances& conformance_tolerances()
+{
+    static const ConformanceTolerances tolerances;
+    return tolerances;
+}
+
+std::vector<std::string> conformance_violations(const ConformancePathResult& result)
+{
+    const ConformanceTolerances& tolerances = conformance_tolerances();
+    std::vector<std::string> violations;
+    auto check = [&](const std::string& what, double value, double bound) {
+        if (!(value <= bound))
+        {
+            std::ostringstream line;
+            line << what << " " << value << " > " << bound;
+            violations.push_back(line.str());
+        }
+    };
+    if (result.nonfinite != 0)
+    {
+        violations.push_back(std::to_string(result.nonfinite) + " non-finite outputs");
+    }
+    check("lobe mismatch fraction", result.lobe_mismatch_fraction, tolerances.lobe_mismatch_fraction);
+    for (const ConformanceChannel& channel : result.channels)
+    {
+        // Ratios of each value's error to its allowance (ConformanceTolerances): at most 1.
+        check(channel.name + " p99.9 of error / allowance", channel.p999_bound_ratio, 1.0);
+        check(channel.name + " max of error / allowance (" + channel.worst + ")", channel.max_bound_ratio, 1.0);
+    }
+    return violations;
 }
 
 nlohmann::json to_json(const ConformanceReport& report)
@@ -512,7 +922,36 @@ nlohmann::json to_json(const ConformanceReport& report)
                                  {"validation_messages", path.validation_messages},
                                  {"pipelines", path.pipeline_count},
                                  {"worst_output", path.worst_output}});
+        nlohmann::json& entry = json["paths"].back();
+        if (path.device_ns_per_query)
+        {
+            entry["device_ns_per_query"] = *path.device_ns_per_query;
+        }
+        entry["pooled"] = {{"max_rel_err", path.max_relative_error}, {"p999_rel_err", path.p999_relative_error}};
+        nlohmann::json channels = nlohmann::json::object();
+        for (const ConformanceChannel& channel : path.channels)
+        {
+            channels[channel.name] = {{"unit", channel.angle ? "radians" : "relative"},
+                                      {"count", channel.count},
+                                      {"max", channel.max},
+                                      {"p999", channel.p999},
+                                      {"p999_bound_ratio", channel.p999_bound_ratio},
+                                      {"max_bound_ratio", channel.max_bound_ratio},
+                                      {"worst", channel.worst}};
+        }
+        entry["channels"] = channels;
+        const std::vector<std::string> violations = conformance_violations(path);
+        entry["passes"] = path.executed && violations.empty();
+        entry["violations"] = violations;
     }
+    const ConformanceTolerances& tolerances = conformance_tolerances();
+    json["tolerances"] = {{"relative_p999", tolerances.relative_p999},
+                          {"relative_max", tolerances.relative_max},
+                          {"relative_floor", tolerances.relative_floor},
+                          {"angle_p999_radians", tolerances.angle_p999},
+                          {"angle_max_radians", tolerances.angle_max},
+                          {"condition_factor", tolerances.condition_factor},
+                          {"lobe_mismatch_fraction", tolerances.lobe_mismatch_fraction}};
     return json;
 }
 
@@ -534,7 +973,26 @@ std::string to_text(const ConformanceReport& report)
              << 100.0 * path.lobe_mismatch_fraction << " %, " << std::lround(path.queries_per_second)
              << " queries/s, first dispatch " << path.first_dispatch_ms << " ms, " << path.pipeline_count
              << (path.pipeline_count == 1 ? " pipeline\n" : " pipelines\n");
-        text << "    worst: " << path.worst_output << "\n";
+        double relative_max = 0.0, relative_p999 = 0.0, angle_max = 0.0, angle_p999 = 0.0;
+        for (const ConformanceChannel& channel : path.channels)
+        {
+            (channel.angle ? angle_max : relative_max) = std::max(channel.angle ? angle_max : relative_max, channel.max);
+            (channel.angle ? angle_p999 : relative_p999) =
+                std::max(channel.angle ? angle_p999 : relative_p999, channel.p999);
+        }
+        const std::vector<std::string> violations = conformance_violations(path);
+        text << "    per kind: eval/pdf/consistency worst channel max " << relative_max << ", p99.9 " << relative_p999
+             << "; direction angle max " << angle_max << " rad, p99.9 " << angle_p999 << " rad: "
+             << (violations.empty() ? "passes" : "FAILS") << "\n";
+        for (const std::string& violation : violations)
+        {
+            text << "      " << violation << "\n";
+        }
+        if (path.device_ns_per_query)
+        {
+            text << "    device time " << *path.device_ns_per_query << " ns/query\n";
+        }
+        text << "    pooled (old metric) worst: " << path.worst_output << "\n";
     }
     return text.str();
 }

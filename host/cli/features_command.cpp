@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "host/studies/bench_gpu.h"
 #include "host/studies/bench_specialization.h"
 #include "host/scene/features.h"
 #include "host/scene/material_library.h"
@@ -127,6 +128,42 @@ void add_features_subcommands(CLI::App& app, const std::string& materials_direct
                 if (!bench->json.empty())
                 {
                     write_json(bench->json, report);
+                }
+            },
+            1);
+    });
+
+    struct GpuBenchSettings
+    {
+        GpuBenchOptions options;
+        std::string json;
+        bool no_vulkan = false;
+        bool no_cuda = false;
+    };
+    auto gpu = std::make_shared<GpuBenchSettings>();
+    CLI::App* gpu_command = bench_command->add_subcommand(
+        "gpu", "device-timed throughput of prepare+eval, sample, pdf per material class (Vulkan timestamps, CUDA events)");
+    gpu_command->add_option("--json", gpu->json, "write the report as JSON");
+    gpu_command->add_option("--queries", gpu->options.queries, "queries per class and kernel (e.g. 4096 on lavapipe)")
+        ->capture_default_str()->check(CLI::Range(std::size_t(64), std::size_t(100000000)));
+    gpu_command->add_option("--repeats", gpu->options.repeats, "dispatches per kernel (median of 2..n)")
+        ->capture_default_str()->check(CLI::Range(2, 1000));
+    gpu_command->add_option("--path", gpu->options.path, "Vulkan path, e.g. slang-spirv or glsl-spirv")
+        ->capture_default_str();
+    gpu_command->add_flag("--no-vulkan", gpu->no_vulkan, "skip Vulkan");
+    gpu_command->add_flag("--no-cuda", gpu->no_cuda, "skip the CUDA program");
+    gpu_command->callback([gpu, &materials_directory, &kernel_directory]() {
+        run_reporting_errors(
+            [&]() {
+                gpu->options.materials_directory = materials_directory;
+                gpu->options.kernel_directory = kernel_directory;
+                gpu->options.vulkan = !gpu->no_vulkan;
+                gpu->options.cuda = !gpu->no_cuda;
+                const nlohmann::json report = run_gpu_bench(gpu->options);
+                std::cout << gpu_bench_text(report);
+                if (!gpu->json.empty())
+                {
+                    write_json(gpu->json, report);
                 }
             },
             1);

@@ -4,6 +4,8 @@
 #include <sys/wait.h>
 
 #include <cstdio>
+#include <cstdlib>
+#include <regex>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -87,6 +89,10 @@ void write_conformance_inputs(const std::string& directory, const std::vector<fl
 
 std::string default_cuda_conformance_program()
 {
+    if (const char* program = std::getenv("OPENPBR_CUDA_CONFORMANCE_PROGRAM"))
+    {
+        return program;
+    }
     return OPENPBR_CUDA_CONFORMANCE_PROGRAM;
 }
 
@@ -140,6 +146,19 @@ std::vector<ExternalPathResult> run_cuda_conformance_program(const std::string& 
         }
         if (result.note.rfind("executed", 0) == 0)
         {
+            // "... = <ns> ns/query (CUDA events ...); eval <ns> ns/query, sample ..., pdf ..."
+            const std::regex all_time("= ([0-9.eE+-]+) ns/query");
+            const std::regex operation_time("(eval|sample|pdf) ([0-9.eE+-]+) ns/query");
+            std::smatch match;
+            if (std::regex_search(result.note, match, all_time))
+            {
+                result.device_ns_per_query["all"] = std::stod(match[1].str());
+            }
+            for (auto it = std::sregex_iterator(result.note.begin(), result.note.end(), operation_time);
+                 it != std::sregex_iterator(); ++it)
+            {
+                result.device_ns_per_query[(*it)[1].str()] = std::stod((*it)[2].str());
+            }
             result.executed = read_floats(directory / (result.name + ".results.f32"), result.results);
             if (!result.executed)
             {

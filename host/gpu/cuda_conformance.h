@@ -7,6 +7,7 @@
 // The host compares the results with the CPU build like any GPU path's.
 #pragma once
 
+#include <map>
 #include <string>
 #include <vector>
 
@@ -22,9 +23,14 @@ struct ExternalPathResult
     bool executed = false;
     std::string note;           // the program's line, e.g. "skipped: no CUDA device (...)"
     std::vector<float> results; // when executed: OPENPBR_RESULT_FLOATS per query
+    // Kernel times the program measured with CUDA events (ns per query, median of 5 after a
+    // warm-up): "all" (the conformance kernel), "eval", "sample", "pdf" (prepare plus one).
+    std::map<std::string, double> device_ns_per_query;
 };
 
-// The program this build knows (empty when nvcc was not found at configure time).
+// The program this build knows: the environment variable OPENPBR_CUDA_CONFORMANCE_PROGRAM when
+// set (e.g. a build copied to a GPU machine at another path), else the path baked in at
+// configure time (empty when nvcc was not found then).
 std::string default_cuda_conformance_program();
 
 // Runs the program on a batch in a fresh temporary directory; one entry per CUDA path, in the

@@ -230,6 +230,10 @@ struct ContextState {
     // same code with other specialization constants) can reuse the driver's work.
     VkPipelineCache pipeline_cache = VK_NULL_HANDLE;
     bool validation_active = false;
+    // VK_KHR_pipeline_executable_properties enabled (pipelines then capture statistics).
+    bool executable_statistics = false;
+    PFN_vkGetPipelineExecutablePropertiesKHR get_executable_properties = nullptr;
+    PFN_vkGetPipelineExecutableStatisticsKHR get_executable_statistics = nullptr;
     // Its address is handed to the messenger, so it lives here, in a heap object that never
     // moves, rather than in the movable VulkanContext.
     ValidationLog validation_log;
@@ -387,7 +391,39 @@ void create_device(ContextState& state) {
     device_info.sType = VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO;
     device_info.queueCreateInfoCount = 1;
     device_info.pQueueCreateInfos = &queue_info;
+
+    // Register counts, spills and the like per pipeline where the driver reports them
+    // (VK_KHR_pipeline_executable_properties; pipeline_statistics()).
+    uint32_t extension_count = 0;
+    vkEnumerateDeviceExtensionProperties(state.physical_device, nullptr, &extension_count, nullptr);
+    std::vector<VkExtensionProperties> extensions(extension_count);
+    vkEnumerateDeviceExtensionProperties(state.physical_device, nullptr, &extension_count, extensions.data());
+    const char* const executable_extension = VK_KHR_PIPELINE_EXECUTABLE_PROPERTIES_EXTENSION_NAME;
+    VkPhysicalDevicePipelineExecutablePropertiesFeaturesKHR executable_features{};
+    executable_features.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PIPELINE_EXECUTABLE_PROPERTIES_FEATURES_KHR;
+    const bool has_extension = std::any_of(extensions.begin(), extensions.end(), [&](const VkExtensionProperties& e) {
+        return std::strcmp(e.extensionName, executable_extension) == 0;
+    });
+    if (has_extension && state.properties.apiVersion >= VK_API_VERSION_1_1) {
+        VkPhysicalDeviceFeatures2 features{};
+        features.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2;
+        features.pNext = &executable_features;
+        vkGetPhysicalDeviceFeatures2(state.physical_device, &features);
+    }
+    if (executable_features.pipelineExecutableInfo == VK_TRUE) {
+        device_info.pNext = &executable_features;
+        device_info.enabledExtensionCount = 1;
+        device_info.ppEnabledExtensionNames = &executable_extension;
+    }
     check(vkCreateDevice(state.physical_device, &device_info, nullptr, &state.device), "vkCreateDevice");
+    if (executable_features.pipelineExecutableInfo == VK_TRUE) {
+        state.get_executable_properties = reinterpret_cast<PFN_vkGetPipelineExecutablePropertiesKHR>(
+            vkGetDeviceProcAddr(state.device, "vkGetPipelineExecutablePropertiesKHR"));
+        state.get_executable_statistics = reinterpret_cast<PFN_vkGetPipelineExecutableStatisticsKHR>(
+            vkGetDeviceProcAddr(state.device, "vkGetPipelineExecutableStatisticsKHR"));
+        state.executable_statistics =
+            state.get_executable_properties != nullptr && state.get_executable_statistics != nullptr;
+    }
     vkGetDeviceQueue(state.device, state.queue_family_index, 0, &state.queue);
 
     VkCommandPoolCreateInfo pool_info{};
@@ -587,6 +623,7 @@ ComputePipeline::ComputePipeline(const VulkanContext& context,
     pipeline_info.stage.pName = description.entry_point.c_str();
     pipeline_info.stage.pSpecializationInfo = map_entries.empty() ? nullptr : &specialization;
     pipeline_info.layout = state.pipeline_layout;
+    if (context_state.executable_statistics) pipeline_info.flags |= VK_PIPELINE_CREATE_CAPTURE_STATISTICS_BIT_KHR;
     check(vkCreateComputePipelines(device, context_state.pipeline_cache, 1, &pipeline_info, nullptr,
                                    &state.pipeline),
           "vkCreateComputePipelines");
@@ -602,6 +639,58 @@ ComputePipeline& ComputePipeline::operator=(ComputePipeline&&) noexcept = defaul
 ComputePipeline::~ComputePipeline() = default;
 
 double ComputePipeline::create_ms() const { return state_->create_ms; }
+
+std::vector<PipelineStatistic> ComputePipeline::statistics() const {
+    const ContextState& context = *state_->context;
+    std::vector<PipelineStatistic> result;
+    if (!context.executable_statistics) return result;
+    VkPipelineInfoKHR pipeline_info{};
+    pipeline_info.sType = VK_STRUCTURE_TYPE_PIPELINE_INFO_KHR;
+    pipeline_info.pipeline = state_->pipeline;
+    uint32_t executable_count = 0;
+    if (context.get_executable_properties(context.device, &pipeline_info, &executable_count, nullptr) != VK_SUCCESS) {
+        return result;
+    }
+    std::vector<VkPipelineExecutablePropertiesKHR> executables(executable_count);
+    for (VkPipelineExecutablePropertiesKHR& executable : executables) {
+        executable.sType = VK_STRUCTURE_TYPE_PIPELINE_EXECUTABLE_PROPERTIES_KHR;
+    }
+    if (context.get_executable_properties(context.device, &pipeline_info, &executable_count, executables.data()) !=
+        VK_SUCCESS) {
+        return result;
+    }
+    for (uint32_t index = 0; index < executable_count; ++index) {
+        VkPipelineExecutableInfoKHR executable_info{};
+        executable_info.sType = VK_STRUCTURE_TYPE_PIPELINE_EXECUTABLE_INFO_KHR;
+        executable_info.pipeline = state_->pipeline;
+        executable_info.executableIndex = index;
+        uint32_t statistic_count = 0;
+        if (context.get_executable_statistics(context.device, &executable_info, &statistic_count, nullptr) !=
+            VK_SUCCESS) {
+            continue;
+        }
+        std::vector<VkPipelineExecutableStatisticKHR> statistics(statistic_count);
+        for (VkPipelineExecutableStatisticKHR& statistic : statistics) {
+            statistic.sType = VK_STRUCTURE_TYPE_PIPELINE_EXECUTABLE_STATISTIC_KHR;
+        }
+        if (context.get_executable_statistics(context.device, &executable_info, &statistic_count,
+                                              statistics.data()) != VK_SUCCESS) {
+            continue;
+        }
+        for (const VkPipelineExecutableStatisticKHR& statistic : statistics) {
+            double value = 0.0;
+            switch (statistic.format) {
+                case VK_PIPELINE_EXECUTABLE_STATISTIC_FORMAT_BOOL32_KHR: value = statistic.value.b32 ? 1.0 : 0.0; break;
+                case VK_PIPELINE_EXECUTABLE_STATISTIC_FORMAT_INT64_KHR: value = double(statistic.value.i64); break;
+                case VK_PIPELINE_EXECUTABLE_STATISTIC_FORMAT_UINT64_KHR: value = double(statistic.value.u64); break;
+                case VK_PIPELINE_EXECUTABLE_STATISTIC_FORMAT_FLOAT64_KHR: value = statistic.value.f64; break;
+                default: continue;
+            }
+            result.push_back({std::string(executables[index].name) + ": " + statistic.name, value});
+        }
+    }
+    return result;
+}
 const std::vector<BindingLayout>& ComputePipeline::bindings() const { return state_->bindings; }
 uint32_t ComputePipeline::push_constant_size() const { return state_->push_constant_size; }
 
@@ -626,6 +715,10 @@ struct MappedBuffer {
 struct RunResources {
     const ContextState& context;
     std::vector<MappedBuffer> buffers;
+    // DispatchRequest::device_local: the device-local buffer behind each staging buffer of
+    // `buffers` (VK_NULL_HANDLE for images), and the copy back after the last dispatch.
+    std::vector<MappedBuffer> device_buffers;
+    VkCommandBuffer readback_command_buffer = VK_NULL_HANDLE;
     VkDescriptorPool descriptor_pool = VK_NULL_HANDLE;
     VkCommandBuffer command_buffer = VK_NULL_HANDLE;
     VkCommandBuffer setup_command_buffer = VK_NULL_HANDLE;  // image layout transitions
@@ -649,6 +742,13 @@ struct RunResources {
         }
         if (setup_command_buffer != VK_NULL_HANDLE) {
             vkFreeCommandBuffers(device, context.command_pool, 1, &setup_command_buffer);
+        }
+        if (readback_command_buffer != VK_NULL_HANDLE) {
+            vkFreeCommandBuffers(device, context.command_pool, 1, &readback_command_buffer);
+        }
+        for (const MappedBuffer& buffer : device_buffers) {
+            if (buffer.buffer != VK_NULL_HANDLE) vkDestroyBuffer(device, buffer.buffer, nullptr);
+            if (buffer.memory != VK_NULL_HANDLE) vkFreeMemory(device, buffer.memory, nullptr);
         }
         if (descriptor_pool != VK_NULL_HANDLE) vkDestroyDescriptorPool(device, descriptor_pool, nullptr);
         for (const MappedBuffer& buffer : buffers) {
@@ -674,6 +774,18 @@ uint32_t find_host_memory_type(const ContextState& context, const uint32_t allow
         }
     }
     throw std::runtime_error("no HOST_VISIBLE | HOST_COHERENT memory type for a buffer");
+}
+
+// DEVICE_LOCAL memory for a buffer (any other properties allowed: on lavapipe and integrated
+// GPUs it is also host-visible).
+uint32_t find_device_memory_type(const ContextState& context, const uint32_t allowed_type_bits) {
+    for (uint32_t index = 0; index < context.memory_properties.memoryTypeCount; ++index) {
+        if ((allowed_type_bits & (1u << index)) != 0 &&
+            (context.memory_properties.memoryTypes[index].propertyFlags & VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT) != 0) {
+            return index;
+        }
+    }
+    throw std::runtime_error("no DEVICE_LOCAL memory type for a buffer");
 }
 
 // Host-visible, coherent memory for one buffer or image (the same path for both); the caller
@@ -829,6 +941,7 @@ DispatchTiming run(ComputePipeline& pipeline, const std::vector<BufferBinding>& 
     // so sub-allocation would be complexity without benefit.
     const Clock::time_point upload_start = Clock::now();
     resources.buffers.resize(buffers.size());
+    if (request.device_local) resources.device_buffers.resize(buffers.size());
     for (std::size_t index = 0; index < buffers.size(); ++index) {
         const BufferBinding& binding = buffers[index];
         MappedBuffer& target = resources.buffers[index];
@@ -850,10 +963,28 @@ DispatchTiming run(ComputePipeline& pipeline, const std::vector<BufferBinding>& 
         VkBufferCreateInfo buffer_info{};
         buffer_info.sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO;
         buffer_info.size = target.size;
-        buffer_info.usage = binding.uniform ? VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT
-                                            : VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+        const VkBufferUsageFlags shader_usage = binding.uniform ? VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT
+                                                                : VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+        buffer_info.usage = request.device_local
+                                ? VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT
+                                : shader_usage;
         buffer_info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
         check(vkCreateBuffer(device, &buffer_info, nullptr, &target.buffer), "vkCreateBuffer");
+        if (request.device_local) {
+            MappedBuffer& device_target = resources.device_buffers[index];
+            VkBufferCreateInfo device_info = buffer_info;
+            device_info.usage = shader_usage | VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+            check(vkCreateBuffer(device, &device_info, nullptr, &device_target.buffer), "vkCreateBuffer");
+            VkMemoryRequirements device_requirements{};
+            vkGetBufferMemoryRequirements(device, device_target.buffer, &device_requirements);
+            VkMemoryAllocateInfo device_allocate{};
+            device_allocate.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO;
+            device_allocate.allocationSize = device_requirements.size;
+            device_allocate.memoryTypeIndex = find_device_memory_type(context, device_requirements.memoryTypeBits);
+            check(vkAllocateMemory(device, &device_allocate, nullptr, &device_target.memory), "vkAllocateMemory");
+            check(vkBindBufferMemory(device, device_target.buffer, device_target.memory, 0), "vkBindBufferMemory");
+            device_target.size = target.size;
+        }
 
         VkMemoryRequirements requirements{};
         vkGetBufferMemoryRequirements(device, target.buffer, &requirements);
@@ -913,7 +1044,9 @@ DispatchTiming run(ComputePipeline& pipeline, const std::vector<BufferBinding>& 
                 image_infos[index] = {resource.sampler, resource.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
                 write.pImageInfo = &image_infos[index];
             } else {
-                buffer_infos[index] = {resource.buffer, 0, resource.size};
+                const VkBuffer shader_buffer =
+                    request.device_local ? resources.device_buffers[index].buffer : resource.buffer;
+                buffer_infos[index] = {shader_buffer, 0, resource.size};
                 write.pBufferInfo = &buffer_infos[index];
             }
         }
@@ -962,13 +1095,15 @@ DispatchTiming run(ComputePipeline& pipeline, const std::vector<BufferBinding>& 
     if (use_timestamps) {
         vkCmdWriteTimestamp(commands, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, resources.query_pool, 1);
     }
-    // Shader writes must be visible to host reads after the fence; host writes before the
-    // submit need no barrier because vkQueueSubmit makes them visible.
+    // Shader writes must be visible to host reads after the fence (or to the copy back, for
+    // device-local buffers); host writes before the submit need no barrier because
+    // vkQueueSubmit makes them visible.
     VkMemoryBarrier to_host{};
     to_host.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER;
     to_host.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
-    to_host.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
-    vkCmdPipelineBarrier(commands, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0,
+    to_host.dstAccessMask = request.device_local ? VK_ACCESS_TRANSFER_READ_BIT : VK_ACCESS_HOST_READ_BIT;
+    vkCmdPipelineBarrier(commands, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                         request.device_local ? VK_PIPELINE_STAGE_TRANSFER_BIT : VK_PIPELINE_STAGE_HOST_BIT, 0,
                          1, &to_host, 0, nullptr, 0, nullptr);
     check(vkEndCommandBuffer(commands), "vkEndCommandBuffer");
 
@@ -994,13 +1129,30 @@ DispatchTiming run(ComputePipeline& pipeline, const std::vector<BufferBinding>& 
         barrier.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
         image_barriers.push_back(barrier);
     }
-    if (!image_barriers.empty()) {
+    if (!image_barriers.empty() || request.device_local) {
         check(vkAllocateCommandBuffers(device, &command_info, &resources.setup_command_buffer),
               "vkAllocateCommandBuffers");
         check(vkBeginCommandBuffer(resources.setup_command_buffer, &begin_info), "vkBeginCommandBuffer");
-        vkCmdPipelineBarrier(resources.setup_command_buffer, VK_PIPELINE_STAGE_HOST_BIT,
-                             VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 0, nullptr, 0, nullptr,
-                             static_cast<uint32_t>(image_barriers.size()), image_barriers.data());
+        if (request.device_local) {
+            // Staging to device-local, once; the dispatches then read and write video memory.
+            for (std::size_t index = 0; index < buffers.size(); ++index) {
+                if (resources.device_buffers[index].buffer == VK_NULL_HANDLE) continue;
+                const VkBufferCopy region{0, 0, resources.buffers[index].size};
+                vkCmdCopyBuffer(resources.setup_command_buffer, resources.buffers[index].buffer,
+                                resources.device_buffers[index].buffer, 1, &region);
+            }
+            VkMemoryBarrier to_shader{};
+            to_shader.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER;
+            to_shader.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+            to_shader.dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_UNIFORM_READ_BIT;
+            vkCmdPipelineBarrier(resources.setup_command_buffer, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                                 VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 1, &to_shader, 0, nullptr, 0, nullptr);
+        }
+        if (!image_barriers.empty()) {
+            vkCmdPipelineBarrier(resources.setup_command_buffer, VK_PIPELINE_STAGE_HOST_BIT,
+                                 VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 0, nullptr, 0, nullptr,
+                                 static_cast<uint32_t>(image_barriers.size()), image_barriers.data());
+        }
         check(vkEndCommandBuffer(resources.setup_command_buffer), "vkEndCommandBuffer");
         VkSubmitInfo setup_submit{};
         setup_submit.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO;
@@ -1054,6 +1206,33 @@ DispatchTiming run(ComputePipeline& pipeline, const std::vector<BufferBinding>& 
     if (use_timestamps) timing.device_dispatch_ms = steady(device_samples);
 
     const Clock::time_point readback_start = Clock::now();
+    if (request.device_local) {
+        // Device-local results back into their staging buffers, then read as usual.
+        check(vkAllocateCommandBuffers(device, &command_info, &resources.readback_command_buffer),
+              "vkAllocateCommandBuffers");
+        const VkCommandBuffer readback = resources.readback_command_buffer;
+        check(vkBeginCommandBuffer(readback, &begin_info), "vkBeginCommandBuffer");
+        for (std::size_t index = 0; index < buffers.size(); ++index) {
+            if (!buffers[index].read_back || resources.device_buffers[index].buffer == VK_NULL_HANDLE) continue;
+            const VkBufferCopy region{0, 0, resources.buffers[index].size};
+            vkCmdCopyBuffer(readback, resources.device_buffers[index].buffer, resources.buffers[index].buffer, 1,
+                            &region);
+        }
+        VkMemoryBarrier copy_to_host{};
+        copy_to_host.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER;
+        copy_to_host.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+        copy_to_host.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
+        vkCmdPipelineBarrier(readback, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1,
+                             &copy_to_host, 0, nullptr, 0, nullptr);
+        check(vkEndCommandBuffer(readback), "vkEndCommandBuffer");
+        check(vkResetFences(device, 1, &resources.fence), "vkResetFences");
+        VkSubmitInfo readback_submit{};
+        readback_submit.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO;
+        readback_submit.commandBufferCount = 1;
+        readback_submit.pCommandBuffers = &readback;
+        check(vkQueueSubmit(context.queue, 1, &readback_submit, resources.fence), "vkQueueSubmit");
+        check(vkWaitForFences(device, 1, &resources.fence, VK_TRUE, UINT64_MAX), "vkWaitForFences");
+    }
     for (std::size_t index = 0; index < buffers.size(); ++index) {
         const BufferBinding& binding = buffers[index];
         if (binding.read_back && binding.image_width == 0 && binding.data != nullptr && !binding.data->empty()) {

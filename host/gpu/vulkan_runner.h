@@ -16,8 +16,9 @@
 //     create it before creating a VulkanContext.
 //   - VK_ICD_FILENAMES / VK_DRIVER_FILES: restrict which Vulkan drivers the loader sees.
 //
-// Memory model: every buffer lives in HOST_VISIBLE | HOST_COHERENT memory and is written and
-// read through a persistent mapping. That is the natural (and only) kind on lavapipe, which
+// Memory model: by default every buffer lives in HOST_VISIBLE | HOST_COHERENT memory and is
+// written and read through a persistent mapping (DispatchRequest::device_local moves buffers
+// to DEVICE_LOCAL memory behind staging copies). That is the natural (and only) kind on lavapipe, which
 // runs on the CPU, and keeps this runner free of staging copies and explicit flushes. On a
 // discrete GPU it is correct but slower (the shader reads over the bus); this runner is meant
 // for tests and measurements of small kernels, not for throughput.
@@ -114,6 +115,13 @@ struct DispatchTiming {
     int dispatch_count = 0;
 };
 
+// One statistic a driver reports for a pipeline (VK_KHR_pipeline_executable_properties), e.g.
+// {"<executable>: Register count", 96}.
+struct PipelineStatistic {
+    std::string name;
+    double value = 0.0;
+};
+
 struct ContextState;   // defined in vulkan_runner.cpp
 struct PipelineState;  // defined in vulkan_runner.cpp
 
@@ -177,6 +185,9 @@ public:
     // Time to create the shader module, layouts and pipeline. On lavapipe this is small:
     // llvmpipe compiles the shader at the first dispatch instead.
     double create_ms() const;
+    // The driver's statistics of this pipeline (register count, spills, ... as the driver names
+    // them) where it supports VK_KHR_pipeline_executable_properties; empty elsewhere.
+    std::vector<PipelineStatistic> statistics() const;
     const std::vector<BindingLayout>& bindings() const;
     uint32_t push_constant_size() const;
     // Implementation detail, public only for run().
@@ -193,6 +204,11 @@ struct DispatchRequest {
     int repeats = 1;  // total dispatches (>= 1); each is submitted and waited for on its own
     // Exactly the pipeline's push_constant_size bytes (or empty when it has none).
     std::vector<std::byte> push_constants;
+    // Buffers in DEVICE_LOCAL memory, filled once from host-visible staging buffers by a copy
+    // before the first dispatch and read back by a copy after the last: on a discrete GPU the
+    // kernel then reads video memory instead of host memory over the bus (throughput
+    // measurements, `openpbr bench gpu`). Images keep their host-visible linear memory.
+    bool device_local = false;
 };
 
 // Uploads every buffer, dispatches `repeats` times and copies read_back buffers back into

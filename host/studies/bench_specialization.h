@@ -1,15 +1,16 @@
 // bench_specialization.h - `openpbr bench specialization`: what the feature toggles
 // (slang/openpbr_features.h) buy, full pipeline versus the pipeline specialized to a scene's
 // toggle set, in one run:
-//   - lavapipe: BSDF queries per second of the conformance kernel (prepare, eval, pdf and
-//     sample per query), plus pipeline creation and first dispatch (where llvmpipe compiles)
-//     per toggle set;
+//   - the Vulkan device (lavapipe here): BSDF queries per second of the conformance kernel
+//     (prepare, eval, pdf and sample per query) timed as `openpbr bench gpu` times it
+//     (device-local buffers, GPU timestamps), plus pipeline creation and first dispatch (where
+//     llvmpipe compiles) per toggle set;
 //   - CPU: ns per openpbr_eval, the full build against the run-time toggles
 //     (openpbr_runtime_feature_mask) and, for a base-only scene, the build specialized at
 //     compile time (host/studies/bench_specialization_base_only.cpp);
 //   - the floor: a bare GGX + Lambert BRDF (Schlick Fresnel, height-correlated Smith, no
 //     compensation) measured in the same run.
-// JSON: {"scenes": [{"name", "toggles", "lavapipe_full_qps", "lavapipe_specialized_qps",
+// JSON: {"scenes": [{"name", "toggles", "gpu_full_qps", "gpu_specialized_qps", "gpu_timing",
 //        "cpu_full_ns", "cpu_specialized_ns", ...}], "cpu_floor_ns", "pipelines": [...]}.
 // Timings only: nothing here passes or fails.
 #pragma once

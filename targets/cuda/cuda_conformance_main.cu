@@ -7,11 +7,17 @@
 // (packed materials), lut.f32 and fuzz_ltc.f32 (the shipped tables). For each path it writes
 // OUTPUT_DIR/<path>.results.f32 (OPENPBR_RESULT_FLOATS per query; OUTPUT_DIR defaults to
 // INPUT_DIR) and prints one line:
-//   cuda: executed on <device>: <queries> queries, <ms> ms
+//   cuda: executed on <device>: <queries> queries, first launch <ms> ms, kernel <ms> ms =
+//         <ns> ns/query (CUDA events, median of 5 after the first launch); eval <ns> ns/query,
+//         sample <ns> ns/query, pdf <ns> ns/query
 //   cuda: skipped: no CUDA device
+// The first launch includes loading the module (and JIT compilation when the program carries
+// no SASS for the device: targets/CMakeLists.txt, OPENPBR_CUDA_ARCHITECTURES). The per-operation
+// times run prepare plus that one operation (OPENPBR_CONFORMANCE_MODE_*).
 // Exit status: 0 = every path executed; 77 = skipped (no CUDA device or driver); 1 = error.
 #include <cuda_runtime.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <fstream>
@@ -72,6 +78,37 @@ struct Path
     const char* name;
     int (*run)(const DeviceBatch&);
 };
+
+// Kernel time of one mode in ns per query: the median of `repeats` launches timed with CUDA
+// events around the launch alone (the kernel's parameter upload is outside), after the launches
+// that came before (the module is loaded). Negative on a CUDA error.
+double timed_ns_per_query(const Path& path, DeviceBatch batch, unsigned mode, int repeats)
+{
+    batch.mode = mode;
+    cudaEventCreate(&batch.kernel_start);
+    cudaEventCreate(&batch.kernel_stop);
+    std::vector<float> samples;
+    for (int repeat = 0; repeat < repeats; ++repeat)
+    {
+        if (path.run(batch) != cudaSuccess)
+        {
+            break;
+        }
+        float ms = 0.0f;
+        if (cudaEventElapsedTime(&ms, batch.kernel_start, batch.kernel_stop) == cudaSuccess)
+        {
+            samples.push_back(ms);
+        }
+    }
+    cudaEventDestroy(batch.kernel_start);
+    cudaEventDestroy(batch.kernel_stop);
+    if (samples.size() != std::size_t(repeats) || batch.query_count == 0)
+    {
+        return -1.0;
+    }
+    std::sort(samples.begin(), samples.end());
+    return double(samples[samples.size() / 2]) * 1e6 / double(batch.query_count);
+}
 
 }  // namespace
 
@@ -157,8 +194,21 @@ int main(int argc, char** argv)
             status = 1;
             continue;
         }
-        std::printf("%s: executed on %s: %u queries, %.3f ms (first launch, includes module load)\n", path.name,
-                    properties.name, query_count, ms);
+        // A warm-up launch per mode, then five timed ones (modes: all, eval, sample, pdf).
+        double ns_per_query[4] = {0.0, 0.0, 0.0, 0.0};
+        for (unsigned mode = 0; mode < 4; ++mode)
+        {
+            DeviceBatch warm_up = batch;
+            warm_up.mode = mode;
+            path.run(warm_up);
+            ns_per_query[mode] = timed_ns_per_query(path, batch, mode, 5);
+        }
+        std::printf("%s: executed on %s (sm_%d%d): %u queries, first launch %.3f ms (includes module load), kernel "
+                    "%.6f ms = %.4f ns/query (CUDA events, median of 5 after a warm-up); eval %.4f ns/query, "
+                    "sample %.4f ns/query, pdf %.4f ns/query\n",
+                    path.name, properties.name, properties.major, properties.minor, query_count, ms,
+                    ns_per_query[0] * 1e-6 * double(query_count), ns_per_query[0], ns_per_query[1], ns_per_query[2],
+                    ns_per_query[3]);
     }
     cudaFree(const_cast<float*>(batch.queries));
     cudaFree(const_cast<float*>(batch.materials));

@@ -41,12 +41,12 @@ inline KernelBuffers& host_buffers()
 static_assert(OPENPBR_QUERY_FLOATS == openpbr::cuda_conformance::query_floats, "query record size");
 static_assert(OPENPBR_RESULT_FLOATS == openpbr::cuda_conformance::result_floats, "result record size");
 
-__global__ void openpbr_headers_conformance_kernel(unsigned query_count)
+__global__ void openpbr_headers_conformance_kernel(unsigned query_count, unsigned mode)
 {
     const unsigned query = blockIdx.x * blockDim.x + threadIdx.x;
     if (query < query_count)
     {
-        openpbr::openpbr_conformance_run_query(query);
+        openpbr::openpbr_conformance_run_query(query, mode);
     }
 }
 
@@ -61,8 +61,16 @@ int run_headers_conformance(const DeviceBatch& batch)
         return int(status);
     }
     const unsigned blocks = (batch.query_count + 63u) / 64u;
-    openpbr_headers_conformance_kernel<<<blocks, 64>>>(batch.query_count);
+    if (batch.kernel_start)
+    {
+        cudaEventRecord(batch.kernel_start);
+    }
+    openpbr_headers_conformance_kernel<<<blocks, 64>>>(batch.query_count, batch.mode);
     status = cudaGetLastError();
+    if (batch.kernel_stop)
+    {
+        cudaEventRecord(batch.kernel_stop);
+    }
     if (status != cudaSuccess)
     {
         return int(status);

@@ -8,6 +8,8 @@
 
 #include <cstddef>
 
+#include <cuda_runtime.h>
+
 namespace openpbr::cuda_conformance {
 
 // Record sizes of targets/kernels/openpbr_conformance_kernel.h (checked there by
@@ -27,6 +29,12 @@ struct DeviceBatch
     std::size_t fuzz_ltc_count = 0;
     float* results = nullptr;
     unsigned query_count = 0;
+    // OPENPBR_CONFORMANCE_MODE_* of targets/kernels/openpbr_conformance_kernel.h: 0 runs
+    // everything (conformance); 1 eval, 2 sample, 3 pdf (each after prepare) for timings.
+    unsigned mode = 0;
+    // When set, recorded right before and right after the kernel launch (device timing).
+    cudaEvent_t kernel_start = nullptr;
+    cudaEvent_t kernel_stop = nullptr;
 };
 
 // Both launch one thread per query in blocks of 64 and wait for the kernel; they return

@@ -29,14 +29,14 @@ void bind(StructuredBuffer<T>& buffer, Pointer data, std::size_t count)
 
 int run_slang_conformance(const DeviceBatch& batch)
 {
-    // The query count is the first entry of the parameter buffer, as in the Vulkan paths.
+    // The query count and the mode are the first entries of the parameter buffer, as in the Vulkan paths.
     unsigned* parameters = nullptr;
     cudaError_t status = cudaMalloc(&parameters, 4 * sizeof(unsigned));
     if (status != cudaSuccess)
     {
         return int(status);
     }
-    const unsigned parameter_values[4] = {batch.query_count, 0u, 0u, 0u};
+    const unsigned parameter_values[4] = {batch.query_count, batch.mode, 0u, 0u};
     status = cudaMemcpy(parameters, parameter_values, sizeof(parameter_values), cudaMemcpyHostToDevice);
 
     GlobalParams_0 block = {};
@@ -55,8 +55,16 @@ int run_slang_conformance(const DeviceBatch& batch)
     {
         // The kernel's [numthreads(64, 1, 1)] is not enforced by CUDA: launch with that size.
         const unsigned blocks = (batch.query_count + 63u) / 64u;
+        if (batch.kernel_start)
+        {
+            cudaEventRecord(batch.kernel_start);
+        }
         conformance_main<<<blocks, 64>>>();
         status = cudaGetLastError();
+        if (batch.kernel_stop)
+        {
+            cudaEventRecord(batch.kernel_stop);
+        }
     }
     if (status == cudaSuccess)
     {

@@ -21,6 +21,6 @@ void main(uint3 thread_id : SV_DispatchThreadID)
 {
     if (thread_id.x < conformance_parameters[0])
     {
-        openpbr_conformance_run_query(thread_id.x);
+        openpbr_conformance_run_query(thread_id.x, conformance_parameters[1]);
     }
 }

@@ -10,11 +10,21 @@
 //                                   emission (3), 3 unused
 // The includer defines OPENPBR_QUERY_READ(index), OPENPBR_MATERIAL_READ(index) and
 // OPENPBR_RESULT_WRITE(index, value) and has the OpenPBR API in scope.
+//
+// Modes (the second entry of the kernels' parameter buffer; 0 in conformance runs): ALL runs
+// and writes everything; the others run prepare plus one operation and write only its slots,
+// so `openpbr bench gpu` times each operation on its own (a uniform branch: every thread of a
+// dispatch takes the same one).
 #ifndef OPENPBR_CONFORMANCE_KERNEL_H
 #define OPENPBR_CONFORMANCE_KERNEL_H
 
 #define OPENPBR_QUERY_FLOATS 10
 #define OPENPBR_RESULT_FLOATS 24
+
+#define OPENPBR_CONFORMANCE_MODE_ALL 0u
+#define OPENPBR_CONFORMANCE_MODE_EVAL 1u    // prepare + eval: slots 0-5, 18-20
+#define OPENPBR_CONFORMANCE_MODE_SAMPLE 2u  // prepare + sample: slots 7-17
+#define OPENPBR_CONFORMANCE_MODE_PDF 3u     // prepare + pdf: slot 6
 
 #include "../../slang/openpbr_material_packing.h"
 
@@ -32,7 +42,7 @@ OPENPBR_FUNC void openpbr_conformance_write_vec3(uint index, vec3 value)
     OPENPBR_RESULT_WRITE(index + 2u, value.z);
 }
 
-OPENPBR_FUNC void openpbr_conformance_run_query(uint query_index)
+OPENPBR_FUNC void openpbr_conformance_run_query(uint query_index, uint mode)
 {
     const uint query = query_index * uint(OPENPBR_QUERY_FLOATS);
     const uint material_index = uint(OPENPBR_QUERY_READ(query));
@@ -42,23 +52,33 @@ OPENPBR_FUNC void openpbr_conformance_run_query(uint query_index)
 
     const OpenPBR_ResolvedInputs inputs = openpbr_unpack_material(material_index);
     const OpenPBR_PreparedBsdf bsdf = openpbr_prepare(inputs, view);
-    const OpenPBR_DiffuseSpecular value = openpbr_eval(bsdf, light);
-    const float pdf = openpbr_pdf(bsdf, light);
-    const OpenPBR_BsdfSample bsdf_sample = openpbr_sample(bsdf, u);
-
     const uint result = query_index * uint(OPENPBR_RESULT_FLOATS);
-    openpbr_conformance_write_vec3(result, value.diffuse);
-    openpbr_conformance_write_vec3(result + 3u, value.specular);
-    OPENPBR_RESULT_WRITE(result + 6u, pdf);
-    openpbr_conformance_write_vec3(result + 7u, bsdf_sample.direction);
-    openpbr_conformance_write_vec3(result + 10u, bsdf_sample.weight.diffuse);
-    openpbr_conformance_write_vec3(result + 13u, bsdf_sample.weight.specular);
-    OPENPBR_RESULT_WRITE(result + 16u, bsdf_sample.pdf);
-    OPENPBR_RESULT_WRITE(result + 17u, float(bsdf_sample.lobe_type));
-    openpbr_conformance_write_vec3(result + 18u, bsdf.emission);
-    OPENPBR_RESULT_WRITE(result + 21u, 0.0f);
-    OPENPBR_RESULT_WRITE(result + 22u, 0.0f);
-    OPENPBR_RESULT_WRITE(result + 23u, 0.0f);
+    if (mode == OPENPBR_CONFORMANCE_MODE_ALL || mode == OPENPBR_CONFORMANCE_MODE_EVAL)
+    {
+        const OpenPBR_DiffuseSpecular value = openpbr_eval(bsdf, light);
+        openpbr_conformance_write_vec3(result, value.diffuse);
+        openpbr_conformance_write_vec3(result + 3u, value.specular);
+        openpbr_conformance_write_vec3(result + 18u, bsdf.emission);
+    }
+    if (mode == OPENPBR_CONFORMANCE_MODE_ALL || mode == OPENPBR_CONFORMANCE_MODE_PDF)
+    {
+        OPENPBR_RESULT_WRITE(result + 6u, openpbr_pdf(bsdf, light));
+    }
+    if (mode == OPENPBR_CONFORMANCE_MODE_ALL || mode == OPENPBR_CONFORMANCE_MODE_SAMPLE)
+    {
+        const OpenPBR_BsdfSample bsdf_sample = openpbr_sample(bsdf, u);
+        openpbr_conformance_write_vec3(result + 7u, bsdf_sample.direction);
+        openpbr_conformance_write_vec3(result + 10u, bsdf_sample.weight.diffuse);
+        openpbr_conformance_write_vec3(result + 13u, bsdf_sample.weight.specular);
+        OPENPBR_RESULT_WRITE(result + 16u, bsdf_sample.pdf);
+        OPENPBR_RESULT_WRITE(result + 17u, float(bsdf_sample.lobe_type));
+    }
+    if (mode == OPENPBR_CONFORMANCE_MODE_ALL)
+    {
+        OPENPBR_RESULT_WRITE(result + 21u, 0.0f);
+        OPENPBR_RESULT_WRITE(result + 22u, 0.0f);
+        OPENPBR_RESULT_WRITE(result + 23u, 0.0f);
+    }
 }
 
 OPENPBR_NAMESPACE_END

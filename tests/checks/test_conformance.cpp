@@ -1,5 +1,6 @@
-// Conformance between the CPU build and every executed GPU path, at the tolerances of the
-// foundation issue (max relative error 1e-3, 99.9th percentile 1e-5, lobe agreement 99.9 %).
+// Conformance between the CPU build and every executed path (docs/conformance.md): the
+// per-kind metric (eval, pdf and sample consistency per channel, sampled direction as an
+// angle, lobe agreement) on every path, CPU paths that round like a GPU included.
 #include <gtest/gtest.h>
 
 #include "host/checks/conformance.h"
@@ -8,14 +9,15 @@
 namespace {
 
 using openpbr::host::ConformanceOptions;
+using openpbr::host::ConformancePathResult;
 using openpbr::host::ConformanceReport;
 
 // ctest runs every test in its own process, so each test computes only what it checks: the
 // CPU batch alone, or the CPU batch and one path.
-ConformanceReport run_paths(const std::vector<std::string>& paths)
+ConformanceReport run_paths(const std::vector<std::string>& paths, std::size_t query_count = 20000)
 {
     ConformanceOptions options;
-    options.query_count = 20000;
+    options.query_count = query_count;
     options.kernel_directory = OPENPBR_KERNEL_DIR;
     options.validation = true;
     options.paths = paths;
@@ -24,9 +26,30 @@ ConformanceReport run_paths(const std::vector<std::string>& paths)
     return openpbr::host::run_conformance(materials, options);
 }
 
+const ConformancePathResult& find_path(const ConformanceReport& report, const std::string& name)
+{
+    const auto found = std::find_if(report.paths.begin(), report.paths.end(),
+                                    [&](const auto& path) { return path.name == name; });
+    if (found == report.paths.end())
+    {
+        throw std::runtime_error("path missing from the report: " + name);
+    }
+    return *found;
+}
+
+std::string joined(const std::vector<std::string>& lines)
+{
+    std::string text;
+    for (const std::string& line : lines)
+    {
+        text += "\n  " + line;
+    }
+    return text;
+}
+
 TEST(Conformance, CpuOutputsAreFinite)
 {
-    // "cpu-only" names no path, so no GPU path runs.
+    // "cpu-only" names no path, so no other path runs.
     EXPECT_EQ(run_paths({"cpu-only"}).cpu_nonfinite, 0u);
 }
 
@@ -36,23 +59,53 @@ class ConformancePath : public ::testing::TestWithParam<std::string>
 
 TEST_P(ConformancePath, MatchesCpuBuild)
 {
-    const ConformanceReport result = run_paths({GetParam()});
-    const auto found = std::find_if(result.paths.begin(), result.paths.end(),
-                                    [](const auto& path) { return path.name == GetParam(); });
-    ASSERT_NE(found, result.paths.end()) << "path missing from the report: " << GetParam();
-    if (!found->executed)
+    const ConformanceReport report = run_paths({GetParam()});
+    const ConformancePathResult& path = find_path(report, GetParam());
+    if (!path.executed)
     {
-        GTEST_SKIP() << GetParam() << " not executed: " << found->note;
+        GTEST_SKIP() << GetParam() << " not executed: " << path.note;
     }
-    EXPECT_EQ(found->nonfinite, 0u);
-    EXPECT_LE(found->max_relative_error, 1e-3) << found->worst_output;
-    EXPECT_LE(found->p999_relative_error, 1e-5);
-    EXPECT_LE(found->lobe_mismatch_fraction, 1e-3);
-    EXPECT_EQ(found->validation_messages, 0u) << found->note;
+    // Every channel of the per-kind metric got values: eval and pdf for each query, samples of
+    // each kind (continuous and delta) from the materials of conformance_materials.
+    for (const auto& channel : path.channels)
+    {
+        EXPECT_GT(channel.count, 0u) << channel.name;
+    }
+    EXPECT_TRUE(openpbr::host::conformance_violations(path).empty())
+        << joined(openpbr::host::conformance_violations(path));
+    EXPECT_EQ(path.validation_messages, 0u) << path.note;
 }
 
-INSTANTIATE_TEST_SUITE_P(AllPaths, ConformancePath,
-                         ::testing::ValuesIn(openpbr::host::known_conformance_paths()),
+INSTANTIATE_TEST_SUITE_P(AllPaths, ConformancePath, ::testing::ValuesIn(openpbr::host::all_conformance_paths()),
+                         [](const auto& info) {
+                             std::string name = info.param;
+                             std::replace(name.begin(), name.end(), '-', '_');
+                             return name;
+                         });
+
+// The paths that round like a GPU: the old pooled metric (one population of per-slot relative
+// errors, sampled direction components included, max bound 1e-3) fails on them while the
+// per-kind metric passes. 10^6 queries, as on the GPU machine: the pooled max is a tail
+// statistic (measured on cpu-fma: 1.7e-4 at 10^5 queries, 1.8e-3 at 10^6; on the H100 2.2e-3 at
+// 10^6 and 2.4e-2 at 4x10^6), so at 10^5 the old metric still passes.
+class GpuLikeRounding : public ::testing::TestWithParam<std::string>
+{
+};
+
+TEST_P(GpuLikeRounding, PooledMetricFailsPerKindMetricPasses)
+{
+    const ConformanceReport report = run_paths({GetParam()}, 1000000);
+    const ConformancePathResult& path = find_path(report, GetParam());
+    if (!path.executed)
+    {
+        GTEST_SKIP() << GetParam() << " not executed: " << path.note;
+    }
+    EXPECT_GT(path.max_relative_error, 1e-3) << "pooled metric passes; worst " << path.worst_output;
+    EXPECT_TRUE(openpbr::host::conformance_violations(path).empty())
+        << joined(openpbr::host::conformance_violations(path));
+}
+
+INSTANTIATE_TEST_SUITE_P(CpuPaths, GpuLikeRounding, ::testing::Values("cpu-fma", "cpu-fast"),
                          [](const auto& info) {
                              std::string name = info.param;
                              std::replace(name.begin(), name.end(), '-', '_');
