@@ -24,6 +24,8 @@
 #include "host/scene/material_library.h"
 #include "host/scene/parameter_table.h"
 #include "host/gpu/vulkan_runner.h"
+#include "host/support/random.h"
+#include "host/support/stopwatch.h"
 #include "slang/openpbr.h"
 
 namespace openpbr::host {
@@ -297,26 +299,18 @@ StabilityCase parse_case(const nlohmann::json& item, std::size_t index, const st
 
 // ---- Query stream -------------------------------------------------------------------------------
 
-std::uint64_t mix64(std::uint64_t x)
-{
-    // splitmix64 finalizer.
-    x += 0x9e3779b97f4a7c15ull;
-    x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ull;
-    x = (x ^ (x >> 27)) * 0x94d049bb133111ebull;
-    return x ^ (x >> 31);
-}
-
 // Counter-based numbers: query k of case c is the same whatever the batching and path.
 struct QueryRandom
 {
     std::uint64_t state;
     QueryRandom(std::uint64_t seed, std::size_t case_index, std::size_t query)
-        : state(mix64(mix64(seed ^ 0x5851f42d4c957f2dull) ^ (std::uint64_t(case_index) << 40) ^ std::uint64_t(query)))
+        : state(splitmix64(splitmix64(seed ^ 0x5851f42d4c957f2dull) ^ (std::uint64_t(case_index) << 40) ^
+                           std::uint64_t(query)))
     {
     }
     float next()
     {
-        state = mix64(state);
+        state = splitmix64(state);
         return float(state >> 40) * (1.0f / 16777216.0f);  // [0, 1)
     }
 };
@@ -512,7 +506,7 @@ StabilityPathResult run_path(const std::string& name, const Executor& execute, c
 {
     StabilityPathResult path;
     path.name = name;
-    const auto start = std::chrono::steady_clock::now();
+    const Stopwatch stopwatch;
     std::vector<CaseAccumulator> accumulators(cases.size());
     std::vector<float> queries;
     std::vector<std::pair<std::size_t, std::size_t>> owners;  // (case, query in case) per query
@@ -590,7 +584,7 @@ StabilityPathResult run_path(const std::string& name, const Executor& execute, c
         }
         path.cases.push_back(std::move(result));
     }
-    path.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    path.seconds = stopwatch.seconds();
     return path;
 }
 
