@@ -29,7 +29,7 @@ using ParameterTarget = std::variant<float ParameterInputs::*, glm::vec3 Paramet
 
 struct ParameterDescriptor
 {
-    const char* name;  // the input name, e.g. "coat_darkening", "geometry_normal"
+    const char* name;  // the input name, e.g. "base_color", "geometry_normal"
     ParameterTarget target;
     // True for OpenPBR 1.1 inputs (a MaterialX <open_pbr_surface> input of the same name);
     // false for the extensions (the anisotropy rotations), which only the corpus reads.
