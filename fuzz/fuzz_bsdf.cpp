@@ -29,6 +29,7 @@ float g_input[92];
 // openpbr_unpack_material over g_input.
 #define OPENPBR_MATERIAL_READ(index) g_input[(index)]
 #include "fuzz/fuzz_input_layout.h"
+#include "host/scene/material_packing.h"  // header-only packing, the inverse of the read above
 
 static_assert(sizeof(g_input) / sizeof(float) == OPENPBR_FUZZ_INPUT_FLOATS, "input layout changed");
 static_assert(OPENPBR_FUZZ_MATERIAL_OFFSET == 0, "the material is read from the start of the input");
@@ -41,24 +42,7 @@ using glm::vec3;
 void make_default_input(float* input)
 {
     const openpbr::OpenPBR_ResolvedInputs material = openpbr::openpbr_make_default_resolved_inputs();
-    std::size_t index = 0;
-    auto put = [&](float value) { input[OPENPBR_FUZZ_MATERIAL_OFFSET + index++] = value; };
-    auto put3 = [&](const vec3& value) { put(value.x); put(value.y); put(value.z); };
-#define FUZZ_PACK_FLOAT(name) put(material.name);
-#define FUZZ_PACK_COLOR(name) put3(material.name);
-#define FUZZ_PACK_VECTOR2(name) put(material.name.x); put(material.name.y);
-#define FUZZ_PACK_BOOL(name) put(material.name ? 1.0f : 0.0f);
-#define FUZZ_PACK_BASIS(name) put3(material.name.tangent); put3(material.name.bitangent); put3(material.name.normal);
-    OPENPBR_MATERIAL_FIELDS(FUZZ_PACK_FLOAT, FUZZ_PACK_COLOR, FUZZ_PACK_VECTOR2, FUZZ_PACK_BOOL, FUZZ_PACK_BASIS)
-#undef FUZZ_PACK_FLOAT
-#undef FUZZ_PACK_COLOR
-#undef FUZZ_PACK_VECTOR2
-#undef FUZZ_PACK_BOOL
-#undef FUZZ_PACK_BASIS
-    while (index < OPENPBR_PACKED_MATERIAL_FLOATS)
-    {
-        put(0.0f);
-    }
+    openpbr::host::pack_material(material, input + OPENPBR_FUZZ_MATERIAL_OFFSET);
     const float rest[] = {0, 0, 1, 0, 0, 1, 0.5f, 0.5f, 0.5f, 612.0f, 549.0f, 465.0f};
     std::memcpy(input + OPENPBR_FUZZ_VIEW_OFFSET, rest, sizeof rest);
 }

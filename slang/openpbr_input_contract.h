@@ -7,20 +7,8 @@
 
 #include "openpbr_resolved_inputs.h"
 
-// IORs are clamped to the range the energy-compensation tables cover, e.g. 1.5 stays 1.5,
-// 0.2 becomes 1/3, 5 becomes 3.
-#define OPENPBR_IOR_MIN 0.33333334f
-#define OPENPBR_IOR_MAX 3.0f
-// Lengths are clamped far above any scene scale, so products with them stay finite.
-#define OPENPBR_LENGTH_MAX 1e18f
-// Emission up to 1e18 nits; beyond that a float sum of a few samples could overflow.
-#define OPENPBR_LUMINANCE_MAX 1e18f
-// specular_weight may exceed 1 (spec range [0, inf)); 1e6 is far past where the modulated IOR
-// saturates (xi_s is further clamped to 1/F_s in prepare).
-#define OPENPBR_SPECULAR_WEIGHT_MAX 1e6f
-// Abbe number: a value near 0 means unbounded dispersion; 1 still bends blue far from red.
-#define OPENPBR_ABBE_MIN 1.0f
-#define OPENPBR_ABBE_MAX 1e6f
+// The ranges are the parameter table's (openpbr_parameters.h), e.g. specular_ior to
+// [OPENPBR_IOR_MIN, OPENPBR_IOR_MAX] = [1/3, 3].
 
 // OPENPBR_CLAMP_HOOK(field_name, value_before, value_after) is called for every clamp that
 // changes a value, in the C++ build only, when the application defines it (e.g. to assert).
@@ -46,60 +34,30 @@ OPENPBR_FUNC vec3 openpbr_contract_color(vec3 value, float low, float high, vec3
                 openpbr_contract_float(value.z, low, high, fallback.z));
 }
 
-#define OPENPBR_CONTRACT_FLOAT(field, low, high)                                                  \
+#define OPENPBR_CONTRACT_FLOAT(field, default_value, low, high)                                  \
     {                                                                                             \
         const float before = inputs.field;                                                        \
         result.field = openpbr_contract_float(before, low, high, defaults.field);                 \
         OPENPBR_REPORT_CLAMP(field, before, result.field)                                        \
     }
-#define OPENPBR_CONTRACT_COLOR(field, low, high)                                                  \
+#define OPENPBR_CONTRACT_COLOR(field, default_r, default_g, default_b, low, high)                 \
     {                                                                                             \
         result.field = openpbr_contract_color(inputs.field, low, high, defaults.field);           \
         OPENPBR_REPORT_CLAMP(field, inputs.field.x, result.field.x)                              \
         OPENPBR_REPORT_CLAMP(field, inputs.field.y, result.field.y)                              \
         OPENPBR_REPORT_CLAMP(field, inputs.field.z, result.field.z)                              \
     }
+// Booleans have no invalid value; the bases and rotations are handled after the table.
+#define OPENPBR_CONTRACT_VECTOR2(field, default_x, default_y)
+#define OPENPBR_CONTRACT_BOOL(field, default_value)
+#define OPENPBR_CONTRACT_BASIS(field, normal_input, tangent_input)
 
 OPENPBR_FUNC OpenPBR_ResolvedInputs openpbr_apply_input_contract(OPENPBR_IN(OpenPBR_ResolvedInputs) inputs)
 {
     const OpenPBR_ResolvedInputs defaults = openpbr_make_default_resolved_inputs();
     OpenPBR_ResolvedInputs result = inputs;
-    OPENPBR_CONTRACT_FLOAT(base_weight, 0.0f, 1.0f)
-    OPENPBR_CONTRACT_COLOR(base_color, 0.0f, 1.0f)
-    OPENPBR_CONTRACT_FLOAT(base_diffuse_roughness, 0.0f, 1.0f)
-    OPENPBR_CONTRACT_FLOAT(base_metalness, 0.0f, 1.0f)
-    OPENPBR_CONTRACT_FLOAT(specular_weight, 0.0f, OPENPBR_SPECULAR_WEIGHT_MAX)
-    OPENPBR_CONTRACT_COLOR(specular_color, 0.0f, 1.0f)
-    OPENPBR_CONTRACT_FLOAT(specular_roughness, 0.0f, 1.0f)
-    OPENPBR_CONTRACT_FLOAT(specular_roughness_anisotropy, 0.0f, 1.0f)
-    OPENPBR_CONTRACT_FLOAT(specular_ior, OPENPBR_IOR_MIN, OPENPBR_IOR_MAX)
-    OPENPBR_CONTRACT_FLOAT(transmission_weight, 0.0f, 1.0f)
-    OPENPBR_CONTRACT_COLOR(transmission_color, 0.0f, 1.0f)
-    OPENPBR_CONTRACT_FLOAT(transmission_depth, 0.0f, OPENPBR_LENGTH_MAX)
-    OPENPBR_CONTRACT_COLOR(transmission_scatter, 0.0f, 1.0f)
-    OPENPBR_CONTRACT_FLOAT(transmission_scatter_anisotropy, -1.0f, 1.0f)
-    OPENPBR_CONTRACT_FLOAT(transmission_dispersion_scale, 0.0f, 1.0f)
-    OPENPBR_CONTRACT_FLOAT(transmission_dispersion_abbe_number, OPENPBR_ABBE_MIN, OPENPBR_ABBE_MAX)
-    OPENPBR_CONTRACT_FLOAT(subsurface_weight, 0.0f, 1.0f)
-    OPENPBR_CONTRACT_COLOR(subsurface_color, 0.0f, 1.0f)
-    OPENPBR_CONTRACT_FLOAT(subsurface_radius, 0.0f, OPENPBR_LENGTH_MAX)
-    OPENPBR_CONTRACT_COLOR(subsurface_radius_scale, 0.0f, 1.0f)
-    OPENPBR_CONTRACT_FLOAT(subsurface_scatter_anisotropy, -1.0f, 1.0f)
-    OPENPBR_CONTRACT_FLOAT(fuzz_weight, 0.0f, 1.0f)
-    OPENPBR_CONTRACT_COLOR(fuzz_color, 0.0f, 1.0f)
-    OPENPBR_CONTRACT_FLOAT(fuzz_roughness, 0.0f, 1.0f)
-    OPENPBR_CONTRACT_FLOAT(coat_weight, 0.0f, 1.0f)
-    OPENPBR_CONTRACT_COLOR(coat_color, 0.0f, 1.0f)
-    OPENPBR_CONTRACT_FLOAT(coat_roughness, 0.0f, 1.0f)
-    OPENPBR_CONTRACT_FLOAT(coat_roughness_anisotropy, 0.0f, 1.0f)
-    OPENPBR_CONTRACT_FLOAT(coat_ior, OPENPBR_IOR_MIN, OPENPBR_IOR_MAX)
-    OPENPBR_CONTRACT_FLOAT(coat_darkening, 0.0f, 1.0f)
-    OPENPBR_CONTRACT_FLOAT(thin_film_weight, 0.0f, 1.0f)
-    OPENPBR_CONTRACT_FLOAT(thin_film_thickness, 0.0f, OPENPBR_LENGTH_MAX)
-    OPENPBR_CONTRACT_FLOAT(thin_film_ior, OPENPBR_IOR_MIN, OPENPBR_IOR_MAX)
-    OPENPBR_CONTRACT_FLOAT(emission_luminance, 0.0f, OPENPBR_LUMINANCE_MAX)
-    OPENPBR_CONTRACT_COLOR(emission_color, 0.0f, 1.0f)
-    OPENPBR_CONTRACT_FLOAT(geometry_opacity, 0.0f, 1.0f)
+    OPENPBR_PARAMETERS(OPENPBR_CONTRACT_FLOAT, OPENPBR_CONTRACT_COLOR, OPENPBR_CONTRACT_VECTOR2, OPENPBR_CONTRACT_BOOL,
+                       OPENPBR_CONTRACT_BASIS)
     // Bases: re-orthonormalized (a degenerate tangent falls back to a frame from the normal).
     result.geometry_basis = openpbr_rotate_basis(
         openpbr_make_basis(inputs.geometry_basis.normal, inputs.geometry_basis.tangent, inputs.geometry_basis.bitangent),
@@ -126,6 +84,9 @@ OPENPBR_FUNC OpenPBR_ResolvedInputs openpbr_apply_input_contract(OPENPBR_IN(Open
 
 #undef OPENPBR_CONTRACT_FLOAT
 #undef OPENPBR_CONTRACT_COLOR
+#undef OPENPBR_CONTRACT_VECTOR2
+#undef OPENPBR_CONTRACT_BOOL
+#undef OPENPBR_CONTRACT_BASIS
 
 OPENPBR_NAMESPACE_END
 

@@ -677,36 +677,6 @@ std::vector<Material> conformance_materials(const std::vector<Material>& library
     return materials;
 }
 
-std::vector<float> pack_materials(const std::vector<Material>& materials)
-{
-    std::vector<float> packed(materials.size() * OPENPBR_PACKED_MATERIAL_FLOATS, 0.0f);
-    for (std::size_t m = 0; m < materials.size(); ++m)
-    {
-        const OpenPBR_ResolvedInputs& material = materials[m].inputs;
-        float* out = packed.data() + m * OPENPBR_PACKED_MATERIAL_FLOATS;
-        std::size_t index = 0;
-        auto put = [&](float value) { out[index++] = value; };
-        auto put3 = [&](const glm::vec3& value) { put(value.x); put(value.y); put(value.z); };
-#define OPENPBR_PACK_FLOAT(name) put(material.name);
-#define OPENPBR_PACK_COLOR(name) put3(material.name);
-#define OPENPBR_PACK_VECTOR2(name) put(material.name.x); put(material.name.y);
-#define OPENPBR_PACK_BOOL(name) put(material.name ? 1.0f : 0.0f);
-#define OPENPBR_PACK_BASIS(name) put3(material.name.tangent); put3(material.name.bitangent); put3(material.name.normal);
-        OPENPBR_MATERIAL_FIELDS(OPENPBR_PACK_FLOAT, OPENPBR_PACK_COLOR, OPENPBR_PACK_VECTOR2, OPENPBR_PACK_BOOL,
-                                OPENPBR_PACK_BASIS)
-#undef OPENPBR_PACK_FLOAT
-#undef OPENPBR_PACK_COLOR
-#undef OPENPBR_PACK_VECTOR2
-#undef OPENPBR_PACK_BOOL
-#undef OPENPBR_PACK_BASIS
-        if (index > OPENPBR_PACKED_MATERIAL_FLOATS)
-        {
-            throw std::logic_error("OPENPBR_PACKED_MATERIAL_FLOATS is smaller than the material field list");
-        }
-    }
-    return packed;
-}
-
 std::vector<float> make_queries(std::size_t query_count, std::size_t material_count, std::uint64_t seed)
 {
     std::mt19937_64 generator(seed);

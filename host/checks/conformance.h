@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "host/scene/material_library.h"
+#include "host/scene/material_packing.h"
 #include "host/gpu/vulkan_runner.h"
 
 namespace openpbr::host {
@@ -134,9 +135,6 @@ std::vector<float> nudge_directions(const std::vector<float>& queries, int patte
 // Materials used by conformance: the given library plus synthetic materials that switch on
 // every lobe at partial weight.
 std::vector<Material> conformance_materials(const std::vector<Material>& library);
-
-// Packs materials with the single-source field list (slang/openpbr_material_packing.h).
-std::vector<float> pack_materials(const std::vector<Material>& materials);
 
 // Deterministic query batch.
 std::vector<float> make_queries(std::size_t query_count, std::size_t material_count, std::uint64_t seed);

@@ -1,4 +1,5 @@
 #include "host/checks/furnace.h"
+#include "host/support/random.h"
 
 #include <algorithm>
 #include <cmath>
@@ -181,21 +182,8 @@ std::vector<FurnaceConfig> make_configs()
     return configs;
 }
 
-// Counter-based random numbers (SplitMix64 finalizer over seed and index): the same numbers
-// whatever the thread partition, so every run of the command is reproducible.
-std::uint64_t mix64(std::uint64_t x)
-{
-    x += 0x9e3779b97f4a7c15ull;
-    x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ull;
-    x = (x ^ (x >> 27)) * 0x94d049bb133111ebull;
-    return x ^ (x >> 31);
-}
-
-float unit_float(std::uint64_t bits)
-{
-    // 24 random bits: every value exactly representable, strictly below 1.
-    return static_cast<float>(bits >> 40) * (1.0f / 16777216.0f);
-}
+// Counter-based random numbers (SplitMix64 over seed and index, host/support/random.h): the same
+// numbers whatever the thread partition, so every run of the command is reproducible.
 
 struct Sums
 {
@@ -235,14 +223,15 @@ FurnaceEstimate estimate_furnace_albedo(const OpenPBR_ResolvedInputs& inputs, co
                                         std::uint64_t samples, std::uint64_t seed)
 {
     const OpenPBR_PreparedBsdf bsdf = openpbr_prepare(inputs, view_world);
-    const std::uint64_t stream = mix64(seed);
+    const std::uint64_t stream = splitmix64(seed);
     const Sums total = tbb::parallel_reduce(
         tbb::blocked_range<std::uint64_t>(0, samples, 4096), Sums(),
         [&](const tbb::blocked_range<std::uint64_t>& range, Sums sums) {
             for (std::uint64_t i = range.begin(); i != range.end(); ++i)
             {
                 const std::uint64_t key = stream ^ (i * 0xd1b54a32d192ed03ull);
-                const vec3 u(unit_float(mix64(key)), unit_float(mix64(key + 1)), unit_float(mix64(key + 2)));
+                const vec3 u(unit_float_from_bits(splitmix64(key)), unit_float_from_bits(splitmix64(key + 1)),
+                             unit_float_from_bits(splitmix64(key + 2)));
                 const OpenPBR_BsdfSample s = openpbr_sample(bsdf, u);
                 if (!(s.pdf > 0.0f))
                 {

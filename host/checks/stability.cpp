@@ -22,7 +22,10 @@
 #include "host/checks/conformance.h"
 #include "host/gpu/cuda_conformance.h"
 #include "host/scene/material_library.h"
+#include "host/scene/parameter_table.h"
 #include "host/gpu/vulkan_runner.h"
+#include "host/support/random.h"
+#include "host/support/stopwatch.h"
 #include "slang/openpbr.h"
 
 namespace openpbr::host {
@@ -34,86 +37,9 @@ namespace {
 using Inputs = openpbr::OpenPBR_ResolvedInputs;
 
 // ---- Corpus: input table ------------------------------------------------------------------
-
-enum class GeometryVector
-{
-    normal,
-    tangent,
-    coat_normal,
-    coat_tangent,
-};
-
-using InputTarget =
-    std::variant<float Inputs::*, glm::vec3 Inputs::*, bool Inputs::*, glm::vec2 Inputs::*, GeometryVector>;
-
-struct InputDescriptor
-{
-    const char* name;
-    InputTarget target;
-};
-
-// Every OpenPBR 1.1 input (specification order) and the two rotation extensions.
-const std::array<InputDescriptor, 43>& input_table()
-{
-    static const std::array<InputDescriptor, 43> table = {{
-        {"base_weight", &Inputs::base_weight},
-        {"base_color", &Inputs::base_color},
-        {"base_diffuse_roughness", &Inputs::base_diffuse_roughness},
-        {"base_metalness", &Inputs::base_metalness},
-        {"specular_weight", &Inputs::specular_weight},
-        {"specular_color", &Inputs::specular_color},
-        {"specular_roughness", &Inputs::specular_roughness},
-        {"specular_roughness_anisotropy", &Inputs::specular_roughness_anisotropy},
-        {"specular_ior", &Inputs::specular_ior},
-        {"transmission_weight", &Inputs::transmission_weight},
-        {"transmission_color", &Inputs::transmission_color},
-        {"transmission_depth", &Inputs::transmission_depth},
-        {"transmission_scatter", &Inputs::transmission_scatter},
-        {"transmission_scatter_anisotropy", &Inputs::transmission_scatter_anisotropy},
-        {"transmission_dispersion_scale", &Inputs::transmission_dispersion_scale},
-        {"transmission_dispersion_abbe_number", &Inputs::transmission_dispersion_abbe_number},
-        {"subsurface_weight", &Inputs::subsurface_weight},
-        {"subsurface_color", &Inputs::subsurface_color},
-        {"subsurface_radius", &Inputs::subsurface_radius},
-        {"subsurface_radius_scale", &Inputs::subsurface_radius_scale},
-        {"subsurface_scatter_anisotropy", &Inputs::subsurface_scatter_anisotropy},
-        {"fuzz_weight", &Inputs::fuzz_weight},
-        {"fuzz_color", &Inputs::fuzz_color},
-        {"fuzz_roughness", &Inputs::fuzz_roughness},
-        {"coat_weight", &Inputs::coat_weight},
-        {"coat_color", &Inputs::coat_color},
-        {"coat_roughness", &Inputs::coat_roughness},
-        {"coat_roughness_anisotropy", &Inputs::coat_roughness_anisotropy},
-        {"coat_ior", &Inputs::coat_ior},
-        {"coat_darkening", &Inputs::coat_darkening},
-        {"thin_film_weight", &Inputs::thin_film_weight},
-        {"thin_film_thickness", &Inputs::thin_film_thickness},
-        {"thin_film_ior", &Inputs::thin_film_ior},
-        {"emission_luminance", &Inputs::emission_luminance},
-        {"emission_color", &Inputs::emission_color},
-        {"geometry_opacity", &Inputs::geometry_opacity},
-        {"geometry_thin_walled", &Inputs::geometry_thin_walled},
-        {"geometry_normal", GeometryVector::normal},
-        {"geometry_tangent", GeometryVector::tangent},
-        {"geometry_coat_normal", GeometryVector::coat_normal},
-        {"geometry_coat_tangent", GeometryVector::coat_tangent},
-        {"specular_anisotropy_rotation", &Inputs::specular_anisotropy_rotation},
-        {"coat_anisotropy_rotation", &Inputs::coat_anisotropy_rotation},
-    }};
-    return table;
-}
-
-const InputDescriptor* find_input(const std::string& name)
-{
-    for (const InputDescriptor& descriptor : input_table())
-    {
-        if (name == descriptor.name)
-        {
-            return &descriptor;
-        }
-    }
-    return nullptr;
-}
+//
+// Every OpenPBR 1.1 input (specification order) and the two rotation extensions: the parameter
+// table (slang/openpbr_parameters.h, as C++ data in host/scene/parameter_table.h).
 
 // ---- Corpus: values -------------------------------------------------------------------------
 
@@ -282,7 +208,7 @@ StabilityCase parse_case(const nlohmann::json& item, std::size_t index, const st
         result.description = item["description"].get<std::string>();
     }
 
-    std::optional<glm::vec3> geometry_vectors[4];
+    GeometryVectors geometry_vectors;
     if (item.contains("material"))
     {
         const nlohmann::json& material = item["material"];
@@ -299,7 +225,7 @@ StabilityCase parse_case(const nlohmann::json& item, std::size_t index, const st
             const nlohmann::json& value = entry.value();
             Where field_where = where;
             field_where.field = "material." + key;
-            const InputDescriptor* descriptor = find_input(key);
+            const ParameterDescriptor* descriptor = find_parameter(key);
             if (!descriptor)
             {
                 throw StabilityCorpusError(field_where("unknown OpenPBR input name"));
@@ -331,15 +257,18 @@ StabilityCase parse_case(const nlohmann::json& item, std::size_t index, const st
                     }
                     else
                     {
-                        geometry_vectors[static_cast<int>(target)] = parse_vec3(value, field_where, "a vector3");
+                        geometry_vectors[target] = parse_vec3(value, field_where, "a vector3");
                     }
                 },
                 descriptor->target);
             result.inputs_set.push_back(key);
         }
     }
-    result.inputs.geometry_basis = raw_basis(geometry_vectors[0], geometry_vectors[1]);
-    result.inputs.geometry_coat_basis = raw_basis(geometry_vectors[2], geometry_vectors[3]);
+    for (std::size_t basis = 0; basis < parameter_bases().size(); ++basis)
+    {
+        result.inputs.*(parameter_bases()[basis].field) =
+            raw_basis(geometry_vectors.normals[basis], geometry_vectors.tangents[basis]);
+    }
 
     {
         Where field_where = where;
@@ -370,26 +299,18 @@ StabilityCase parse_case(const nlohmann::json& item, std::size_t index, const st
 
 // ---- Query stream -------------------------------------------------------------------------------
 
-std::uint64_t mix64(std::uint64_t x)
-{
-    // splitmix64 finalizer.
-    x += 0x9e3779b97f4a7c15ull;
-    x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ull;
-    x = (x ^ (x >> 27)) * 0x94d049bb133111ebull;
-    return x ^ (x >> 31);
-}
-
 // Counter-based numbers: query k of case c is the same whatever the batching and path.
 struct QueryRandom
 {
     std::uint64_t state;
     QueryRandom(std::uint64_t seed, std::size_t case_index, std::size_t query)
-        : state(mix64(mix64(seed ^ 0x5851f42d4c957f2dull) ^ (std::uint64_t(case_index) << 40) ^ std::uint64_t(query)))
+        : state(splitmix64(splitmix64(seed ^ 0x5851f42d4c957f2dull) ^ (std::uint64_t(case_index) << 40) ^
+                           std::uint64_t(query)))
     {
     }
     float next()
     {
-        state = mix64(state);
+        state = splitmix64(state);
         return float(state >> 40) * (1.0f / 16777216.0f);  // [0, 1)
     }
 };
@@ -585,7 +506,7 @@ StabilityPathResult run_path(const std::string& name, const Executor& execute, c
 {
     StabilityPathResult path;
     path.name = name;
-    const auto start = std::chrono::steady_clock::now();
+    const Stopwatch stopwatch;
     std::vector<CaseAccumulator> accumulators(cases.size());
     std::vector<float> queries;
     std::vector<std::pair<std::size_t, std::size_t>> owners;  // (case, query in case) per query
@@ -663,7 +584,7 @@ StabilityPathResult run_path(const std::string& name, const Executor& execute, c
         }
         path.cases.push_back(std::move(result));
     }
-    path.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    path.seconds = stopwatch.seconds();
     return path;
 }
 
@@ -729,7 +650,7 @@ nlohmann::json array_json(const float* values, int count)
 std::vector<std::string> stability_input_names()
 {
     std::vector<std::string> names;
-    for (const InputDescriptor& descriptor : input_table())
+    for (const ParameterDescriptor& descriptor : parameter_descriptors())
     {
         names.emplace_back(descriptor.name);
     }

@@ -6,19 +6,10 @@
 #include <memory>
 
 #include "host/studies/accuracy.h"
+#include "host/cli/output_files.h"
 
 namespace openpbr::host {
 namespace {
-
-void write_text_file(const std::string& path, const std::string& text)
-{
-    std::ofstream stream(path);
-    stream << text;
-    if (!stream)
-    {
-        throw std::runtime_error("cannot write " + path);
-    }
-}
 
 struct AccuracyCommandSettings
 {
@@ -86,7 +77,7 @@ CLI::App* add_bench_accuracy_subcommand(CLI::App& app)
             std::cout << accuracy_to_text(rows);
             if (!settings->json_path.empty())
             {
-                write_text_file(settings->json_path, accuracy_to_json(rows).dump(2) + "\n");
+                write_json_file(settings->json_path, accuracy_to_json(rows));
                 std::cout << "wrote " << settings->json_path << "\n";
             }
             if (!settings->csv_path.empty())

@@ -11,6 +11,7 @@
 #include "host/studies/bench_specialization.h"
 #include "host/scene/features.h"
 #include "host/scene/material_library.h"
+#include "host/cli/output_files.h"
 
 namespace openpbr::host {
 
@@ -18,12 +19,7 @@ namespace {
 
 void write_json(const std::string& path, const nlohmann::json& json)
 {
-    std::ofstream file(path);
-    file << json.dump(2) << "\n";
-    if (!file)
-    {
-        throw std::runtime_error("cannot write '" + path + "'");
-    }
+    write_json_file(path, json);
     std::cout << "wrote " << path << "\n";
 }
 

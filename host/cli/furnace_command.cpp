@@ -7,6 +7,7 @@
 #include <CLI/CLI.hpp>
 
 #include "host/checks/furnace.h"
+#include "host/cli/output_files.h"
 
 namespace openpbr::host {
 
@@ -41,11 +42,7 @@ int run_furnace_command(const FurnaceCommand& command)
         std::cout << furnace_to_text(rows);
         if (!command.options->json_path.empty())
         {
-            std::ofstream file(command.options->json_path);
-            if (!(file << furnace_to_json(rows).dump(2) << "\n"))
-            {
-                throw std::runtime_error("cannot write '" + command.options->json_path + "'");
-            }
+            write_json_file(command.options->json_path, furnace_to_json(rows));
             std::cout << "wrote " << command.options->json_path << "\n";
         }
         std::size_t failures = 0;

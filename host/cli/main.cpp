@@ -16,6 +16,7 @@
 #include "host/scene/material_library.h"
 #include "host/cli/render_command.h"
 #include "host/cli/stability_command.h"
+#include "host/cli/output_files.h"
 
 #ifndef OPENPBR_DEFAULT_MATERIALS_DIR
 #define OPENPBR_DEFAULT_MATERIALS_DIR "materials"
@@ -28,20 +29,6 @@
 #endif
 
 namespace {
-
-void write_json_file(const std::string& path, const nlohmann::json& json)
-{
-    std::ofstream file(path);
-    if (!file)
-    {
-        throw std::runtime_error("cannot write '" + path + "'");
-    }
-    file << json.dump(2) << "\n";
-    if (!file)
-    {
-        throw std::runtime_error("error while writing '" + path + "'");
-    }
-}
 
 std::vector<openpbr::host::Material> load_materials(const std::vector<std::string>& files, const std::string& directory)
 {
@@ -174,7 +161,7 @@ int main(int argc, char** argv)
             std::cout << openpbr::host::to_text(report);
             if (!conformance_json.empty())
             {
-                write_json_file(conformance_json, openpbr::host::to_json(report));
+                openpbr::host::write_json_file(conformance_json, openpbr::host::to_json(report));
                 std::cout << "wrote " << conformance_json << "\n";
             }
         }

@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "host/preview/render.h"
+#include "host/cli/output_files.h"
 
 namespace openpbr::host {
 
@@ -40,12 +41,6 @@ std::string stem_of(const std::string& path) {
     const std::size_t slash = path.find_last_of('/');
     const std::size_t dot = path.find_last_of('.');
     return (dot != std::string::npos && (slash == std::string::npos || dot > slash)) ? path.substr(0, dot) : path;
-}
-
-void write_json(const std::string& path, const nlohmann::json& json) {
-    std::ofstream file(path);
-    if (!file) throw std::runtime_error("cannot write '" + path + "'");
-    file << json.dump(2) << "\n";
 }
 
 nlohmann::json describe_render(const RenderImage& image, RenderBackend backend) {
@@ -210,7 +205,7 @@ int run_render_command(const RenderCommand& command, const std::string& material
                 furnace_check(cpu, "cpu");
                 furnace_check(vulkan, "vulkan");
             }
-            write_json(json_path, report);
+            write_json_file(json_path, report);
             std::printf("wrote %s (cpu), %s (vulkan), %s (|cpu - vulkan| x %g), %s\n", output.c_str(),
                         vulkan_path.c_str(), difference_path.c_str(), double(options.difference_scale),
                         json_path.c_str());
@@ -226,7 +221,7 @@ int run_render_command(const RenderCommand& command, const std::string& material
         write_render_png(output, image, options.exposure, labels);
         std::printf("wrote %s\n", output.c_str());
         if (!options.json.empty()) {
-            write_json(options.json, report);
+            write_json_file(options.json, report);
             std::printf("wrote %s\n", options.json.c_str());
         }
         return status;

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "host/checks/stability.h"
+#include "host/cli/output_files.h"
 
 namespace openpbr::host {
 
@@ -54,12 +55,7 @@ CLI::App* add_stability_subcommand(CLI::App& app, const std::string& default_cor
             std::cout << to_text(report);
             if (!settings->json.empty())
             {
-                std::ofstream file(settings->json);
-                file << to_json(report).dump(2) << "\n";
-                if (!file)
-                {
-                    throw std::runtime_error("cannot write '" + settings->json + "'");
-                }
+                write_json_file(settings->json, to_json(report));
                 std::cout << "wrote " << settings->json << "\n";
             }
             if (has_violations(report))

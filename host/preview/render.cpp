@@ -16,7 +16,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
-#include "host/checks/conformance.h"
+#include "host/scene/material_packing.h"
 #include "host/gpu/shipped_tables.h"
 #include "host/gpu/vulkan_runner.h"
 #include "slang/openpbr.h"

@@ -1,8 +1,10 @@
 // material_library.cpp - MaterialX reader for constant-valued <open_pbr_surface> nodes.
-// Design: one table (input_table) maps every OpenPBR 1.1 input name to its MaterialX type and
-// to where its value goes; parsing, validation, describe() and supported_input_names() are all
-// driven by that table, so adding an input is one line.
+// Design: the parameter table (slang/openpbr_parameters.h, as C++ data in parameter_table.h)
+// maps every OpenPBR 1.1 input name to its MaterialX type and to where its value goes; parsing,
+// validation, describe() and supported_input_names() are all driven by it, so adding an input
+// is one line there.
 #include "host/scene/material_library.h"
+#include "host/scene/parameter_table.h"
 
 #include <algorithm>
 #include <array>
@@ -51,77 +53,47 @@ const char* type_name(const ValueType type)
     return "unknown";
 }
 
-// Normals and tangents are not fields of Inputs: they become the two bases only after every
-// input is read, because a tangent frame needs its normal and tangent together.
-enum class GeometryVector
+// The MaterialX type of each parameter target: a bool is "boolean", a vec3 field "color3",
+// a basis's normal or tangent "vector3", a float "float".
+ValueType value_type(const ParameterDescriptor& descriptor)
 {
-    normal,
-    tangent,
-    coat_normal,
-    coat_tangent,
-};
-constexpr std::size_t geometry_vector_count = 4;
+    if (std::holds_alternative<glm::vec3 Inputs::*>(descriptor.target))
+    {
+        return ValueType::color3_value;
+    }
+    if (std::holds_alternative<GeometryVector>(descriptor.target))
+    {
+        return ValueType::vector3_value;
+    }
+    if (std::holds_alternative<bool Inputs::*>(descriptor.target))
+    {
+        return ValueType::boolean_value;
+    }
+    return ValueType::float_value;
+}
 
-using InputTarget = std::variant<float Inputs::*, glm::vec3 Inputs::*, bool Inputs::*, GeometryVector>;
-
-struct InputDescriptor
+// Every OpenPBR 1.1 input in specification order ("Parameter reference"): the MaterialX inputs
+// of the parameter table (slang/openpbr_parameters.h), without the extensions.
+const std::vector<const ParameterDescriptor*>& input_table()
 {
-    const char* name;
-    ValueType type;
-    InputTarget target;
-};
+    static const std::vector<const ParameterDescriptor*> table = [] {
+        std::vector<const ParameterDescriptor*> inputs;
+        for (const ParameterDescriptor& descriptor : parameter_descriptors())
+        {
+            if (descriptor.materialx)
+            {
+                inputs.push_back(&descriptor);
+            }
+        }
+        return inputs;
+    }();
+    return table;
+}
 
-// Every input of OpenPBR 1.1 in specification order ("Parameter reference").
-const std::array<InputDescriptor, 41> input_table = {{
-    {"base_weight", ValueType::float_value, &Inputs::base_weight},
-    {"base_color", ValueType::color3_value, &Inputs::base_color},
-    {"base_diffuse_roughness", ValueType::float_value, &Inputs::base_diffuse_roughness},
-    {"base_metalness", ValueType::float_value, &Inputs::base_metalness},
-    {"specular_weight", ValueType::float_value, &Inputs::specular_weight},
-    {"specular_color", ValueType::color3_value, &Inputs::specular_color},
-    {"specular_roughness", ValueType::float_value, &Inputs::specular_roughness},
-    {"specular_roughness_anisotropy", ValueType::float_value, &Inputs::specular_roughness_anisotropy},
-    {"specular_ior", ValueType::float_value, &Inputs::specular_ior},
-    {"transmission_weight", ValueType::float_value, &Inputs::transmission_weight},
-    {"transmission_color", ValueType::color3_value, &Inputs::transmission_color},
-    {"transmission_depth", ValueType::float_value, &Inputs::transmission_depth},
-    {"transmission_scatter", ValueType::color3_value, &Inputs::transmission_scatter},
-    {"transmission_scatter_anisotropy", ValueType::float_value, &Inputs::transmission_scatter_anisotropy},
-    {"transmission_dispersion_scale", ValueType::float_value, &Inputs::transmission_dispersion_scale},
-    {"transmission_dispersion_abbe_number", ValueType::float_value,
-     &Inputs::transmission_dispersion_abbe_number},
-    {"subsurface_weight", ValueType::float_value, &Inputs::subsurface_weight},
-    {"subsurface_color", ValueType::color3_value, &Inputs::subsurface_color},
-    {"subsurface_radius", ValueType::float_value, &Inputs::subsurface_radius},
-    {"subsurface_radius_scale", ValueType::color3_value, &Inputs::subsurface_radius_scale},
-    {"subsurface_scatter_anisotropy", ValueType::float_value, &Inputs::subsurface_scatter_anisotropy},
-    {"fuzz_weight", ValueType::float_value, &Inputs::fuzz_weight},
-    {"fuzz_color", ValueType::color3_value, &Inputs::fuzz_color},
-    {"fuzz_roughness", ValueType::float_value, &Inputs::fuzz_roughness},
-    {"coat_weight", ValueType::float_value, &Inputs::coat_weight},
-    {"coat_color", ValueType::color3_value, &Inputs::coat_color},
-    {"coat_roughness", ValueType::float_value, &Inputs::coat_roughness},
-    {"coat_roughness_anisotropy", ValueType::float_value, &Inputs::coat_roughness_anisotropy},
-    {"coat_ior", ValueType::float_value, &Inputs::coat_ior},
-    {"coat_darkening", ValueType::float_value, &Inputs::coat_darkening},
-    {"thin_film_weight", ValueType::float_value, &Inputs::thin_film_weight},
-    {"thin_film_thickness", ValueType::float_value, &Inputs::thin_film_thickness},
-    {"thin_film_ior", ValueType::float_value, &Inputs::thin_film_ior},
-    {"emission_luminance", ValueType::float_value, &Inputs::emission_luminance},
-    {"emission_color", ValueType::color3_value, &Inputs::emission_color},
-    {"geometry_opacity", ValueType::float_value, &Inputs::geometry_opacity},
-    {"geometry_thin_walled", ValueType::boolean_value, &Inputs::geometry_thin_walled},
-    {"geometry_normal", ValueType::vector3_value, GeometryVector::normal},
-    {"geometry_tangent", ValueType::vector3_value, GeometryVector::tangent},
-    {"geometry_coat_normal", ValueType::vector3_value, GeometryVector::coat_normal},
-    {"geometry_coat_tangent", ValueType::vector3_value, GeometryVector::coat_tangent},
-}};
-
-const InputDescriptor* find_input(const std::string_view name)
+const ParameterDescriptor* find_input(const std::string_view name)
 {
-    const auto found = std::find_if(input_table.begin(), input_table.end(),
-                                    [name](const InputDescriptor& descriptor) { return name == descriptor.name; });
-    return found == input_table.end() ? nullptr : &*found;
+    const ParameterDescriptor* descriptor = find_parameter(name);
+    return descriptor && descriptor->materialx ? descriptor : nullptr;
 }
 
 // An input's value before it is stored: floats for every numeric type, or a boolean.
@@ -136,7 +108,7 @@ struct ParsedValue
 struct SurfaceValues
 {
     Inputs inputs = openpbr::openpbr_make_default_resolved_inputs();
-    std::array<std::optional<glm::vec3>, geometry_vector_count> geometry_vectors;
+    GeometryVectors geometry_vectors;
     std::vector<std::string> inputs_set;
 };
 
@@ -153,7 +125,7 @@ OpenPBR_Basis make_basis_from(const std::optional<glm::vec3>& normal, const std:
     return openpbr::openpbr_make_basis(resolved_normal, *tangent, 1.0f);
 }
 
-void store_value(SurfaceValues& values, const InputDescriptor& descriptor, const ParsedValue& value)
+void store_value(SurfaceValues& values, const ParameterDescriptor& descriptor, const ParsedValue& value)
 {
     std::visit(
         [&](const auto target) {
@@ -170,9 +142,9 @@ void store_value(SurfaceValues& values, const InputDescriptor& descriptor, const
             {
                 values.inputs.*target = value.boolean;
             }
-            else
+            else if constexpr (std::is_same_v<Target, GeometryVector>)
             {
-                values.geometry_vectors[static_cast<std::size_t>(target)] = value.vector;
+                values.geometry_vectors[target] = value.vector;
             }
         },
         descriptor.target);
@@ -192,7 +164,7 @@ std::string format_vector(const glm::vec3& value)
 
 // The value an input currently has in `inputs`, as text, for describe(). Geometry vectors are
 // read back from the bases, so a tangent shows after Gram-Schmidt against its normal.
-std::string format_input(const Inputs& inputs, const InputDescriptor& descriptor)
+std::string format_input(const Inputs& inputs, const ParameterDescriptor& descriptor)
 {
     return std::visit(
         [&](const auto target) -> std::string {
@@ -209,19 +181,14 @@ std::string format_input(const Inputs& inputs, const InputDescriptor& descriptor
             {
                 return inputs.*target ? "true" : "false";
             }
+            else if constexpr (std::is_same_v<Target, GeometryVector>)
+            {
+                const OpenPBR_Basis& basis = inputs.*(parameter_bases()[target.basis].field);
+                return format_vector(target.tangent ? basis.tangent : basis.normal);
+            }
             else
             {
-                switch (target)
-                {
-                case GeometryVector::normal:
-                    return format_vector(inputs.geometry_basis.normal);
-                case GeometryVector::tangent:
-                    return format_vector(inputs.geometry_basis.tangent);
-                case GeometryVector::coat_normal:
-                    return format_vector(inputs.geometry_coat_basis.normal);
-                case GeometryVector::coat_tangent:
-                    return format_vector(inputs.geometry_coat_basis.tangent);
-                }
+                // Extensions (vec2) are not MaterialX inputs and never reach here.
                 return "";
             }
         },
@@ -351,11 +318,12 @@ void read_input(const SourceFile& source, const std::string& document_colorspace
         source.fail(input_node, "open_pbr_surface '" + std::string(surface_node.attribute("name").as_string()) +
                                     "' has an <input> without a name");
     }
-    const InputDescriptor* const descriptor = find_input(name);
+    const ParameterDescriptor* const descriptor = find_input(name);
     if (descriptor == nullptr)
     {
         source.fail(input_node, context + ": unknown input name (not an OpenPBR 1.1 input)");
     }
+    const ValueType type = value_type(*descriptor);
     if (std::find(values.inputs_set.begin(), values.inputs_set.end(), name) != values.inputs_set.end())
     {
         source.fail(input_node, context + ": input given more than once");
@@ -372,12 +340,12 @@ void read_input(const SourceFile& source, const std::string& document_colorspace
     const pugi::xml_attribute type_attribute = input_node.attribute("type");
     if (!type_attribute)
     {
-        source.fail(input_node, context + ": missing type attribute (expected '" + type_name(descriptor->type) + "')");
+        source.fail(input_node, context + ": missing type attribute (expected '" + type_name(type) + "')");
     }
-    if (std::string_view(type_attribute.value()) != type_name(descriptor->type))
+    if (std::string_view(type_attribute.value()) != type_name(type))
     {
         source.fail(input_node, context + ": wrong type '" + type_attribute.value() + "', expected '" +
-                                    type_name(descriptor->type) + "'");
+                                    type_name(type) + "'");
     }
     // Colors are used as written; a color authored in another space would need a conversion
     // this loader does not do, so say so instead of rendering the wrong color.
@@ -395,7 +363,7 @@ void read_input(const SourceFile& source, const std::string& document_colorspace
     const std::string_view text = value_attribute.value();
 
     ParsedValue value;
-    if (descriptor->type == ValueType::boolean_value)
+    if (type == ValueType::boolean_value)
     {
         const std::string_view word = trim(text);
         if (word != "true" && word != "false")
@@ -412,12 +380,12 @@ void read_input(const SourceFile& source, const std::string& document_colorspace
         {
             source.fail(input_node, context + ": " + problem + " in value '" + std::string(text) + "'");
         }
-        const std::size_t expected_count = descriptor->type == ValueType::float_value ? 1 : 3;
+        const std::size_t expected_count = type == ValueType::float_value ? 1 : 3;
         if (components.size() != expected_count)
         {
             source.fail(input_node, context + ": value '" + std::string(text) + "' has " +
                                         std::to_string(components.size()) + " component(s), type '" +
-                                        type_name(descriptor->type) + "' needs " + std::to_string(expected_count));
+                                        type_name(type) + "' needs " + std::to_string(expected_count));
         }
         value.scalar = components[0];
         if (expected_count == 3)
@@ -437,19 +405,19 @@ Material read_surface(const SourceFile& source, const std::string& document_colo
     {
         read_input(source, document_colorspace, surface_node, input_node, values);
     }
-    values.inputs.geometry_basis = make_basis_from(values.geometry_vectors[static_cast<std::size_t>(GeometryVector::normal)],
-                                                   values.geometry_vectors[static_cast<std::size_t>(GeometryVector::tangent)]);
-    // A file that sets no frame at all keeps the API's default coat basis (which follows the
-    // base frame, here the same unperturbed frame); one that perturbs only the base keeps the
-    // coat on the unperturbed frame, the spec's default geometry_coat_normal.
-    const std::optional<glm::vec3>& coat_normal = values.geometry_vectors[static_cast<std::size_t>(GeometryVector::coat_normal)];
-    const std::optional<glm::vec3>& coat_tangent = values.geometry_vectors[static_cast<std::size_t>(GeometryVector::coat_tangent)];
-    const bool any_frame_set = coat_normal || coat_tangent ||
-                               values.geometry_vectors[static_cast<std::size_t>(GeometryVector::normal)] ||
-                               values.geometry_vectors[static_cast<std::size_t>(GeometryVector::tangent)];
-    if (any_frame_set)
+    // A file that sets no frame at all keeps the API's default bases (+z, and a coat basis that
+    // follows the base frame); one that perturbs only the base keeps the coat on the unperturbed
+    // frame, the spec's default geometry_coat_normal.
+    bool any_frame_set = false;
+    for (std::size_t basis = 0; basis < parameter_bases().size(); ++basis)
     {
-        values.inputs.geometry_coat_basis = make_basis_from(coat_normal, coat_tangent);
+        any_frame_set = any_frame_set || values.geometry_vectors.normals[basis].has_value() ||
+                        values.geometry_vectors.tangents[basis].has_value();
+    }
+    for (std::size_t basis = 0; any_frame_set && basis < parameter_bases().size(); ++basis)
+    {
+        values.inputs.*(parameter_bases()[basis].field) =
+            make_basis_from(values.geometry_vectors.normals[basis], values.geometry_vectors.tangents[basis]);
     }
 
     Material material;
@@ -598,12 +566,12 @@ std::string describe(const Material& material)
     bool any_differs = false;
     // Compared as printed (6 significant digits): a difference too small to show would only
     // print as "x = <the default>", which tells the reader nothing.
-    for (const InputDescriptor& descriptor : input_table)
+    for (const ParameterDescriptor* descriptor : input_table())
     {
-        const std::string value = format_input(material.inputs, descriptor);
-        if (value != format_input(defaults, descriptor))
+        const std::string value = format_input(material.inputs, *descriptor);
+        if (value != format_input(defaults, *descriptor))
         {
-            text += std::string(any_differs ? ", " : " ") + descriptor.name + " = " + value;
+            text += std::string(any_differs ? ", " : " ") + descriptor->name + " = " + value;
             any_differs = true;
         }
     }
@@ -617,10 +585,10 @@ std::string describe(const Material& material)
 std::vector<std::string> supported_input_names()
 {
     std::vector<std::string> names;
-    names.reserve(input_table.size());
-    for (const InputDescriptor& descriptor : input_table)
+    names.reserve(input_table().size());
+    for (const ParameterDescriptor* descriptor : input_table())
     {
-        names.emplace_back(descriptor.name);
+        names.emplace_back(descriptor->name);
     }
     return names;
 }

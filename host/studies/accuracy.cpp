@@ -26,6 +26,7 @@
 #include "host/tables/microsurface.h"
 #include "host/gpu/shipped_tables.h"
 #include "host/gpu/vulkan_runner.h"
+#include "host/support/stopwatch.h"
 #include "slang/baselines/openpbr_baseline_ggx.h"
 #include "slang/openpbr.h"
 
@@ -175,10 +176,9 @@ template <typename Function> double time_ns_per_query(std::size_t queries, Funct
     double best = std::numeric_limits<double>::infinity();
     for (int repeat = 0; repeat < 3; ++repeat)
     {
-        const auto start = std::chrono::steady_clock::now();
+        const Stopwatch stopwatch;
         run();
-        const auto stop = std::chrono::steady_clock::now();
-        best = std::min(best, std::chrono::duration<double, std::nano>(stop - start).count() / double(queries));
+        best = std::min(best, stopwatch.seconds() * 1e9 / double(queries));
     }
     return best;
 }
@@ -348,9 +348,9 @@ CompileResult slang_compile(const std::filesystem::path& root, const std::vector
     command += " -o \"" + output.string() + "\" \"" + (root / "targets/kernels/conformance.slang").string() +
                "\" > /dev/null 2>&1";
     CompileResult result;
-    const auto start = std::chrono::steady_clock::now();
+    const Stopwatch stopwatch;
     const int status = std::system(command.c_str());
-    result.milliseconds = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    result.milliseconds = stopwatch.milliseconds();
     result.ok = status == 0 && std::filesystem::exists(output);
     result.bytes = result.ok ? double(std::filesystem::file_size(output)) : 0.0;
     return result;

@@ -2,8 +2,9 @@
 // reference of the "per-query relative error vs the double build" metric. Compiled against the
 // double-precision copy of the headers that tools/make_double_headers.py derives from the
 // single source into the build directory (CMake target openpbr_accuracy_double, whose include
-// path puts that copy before the repository's). Not named accuracy_variant_*.cpp: those are the
-// float variants compiled against the repository's headers.
+// path puts that copy before the repository's). Not generated from
+// host/studies/accuracy_variants.cmake like the float variants: those compile against the
+// repository's headers.
 // The compiled-in tables get this translation unit's own names: the float variants'
 // ::openpbr::openpbr_lut_data is a float array, and one name cannot have two types.
 #define openpbr_lut_data accuracy_double_lut_data

@@ -2,7 +2,8 @@
 // (docs/accuracy-vs-time.md), each in its own translation unit and namespace
 // (OPENPBR_CPP_VARIANT_NAMESPACE of interop/openpbr_interop_cpp.h), behind one interface of
 // plain functions, so one process measures every setting with the same workload.
-// host/studies/accuracy_variant_body.h is the single body every variant file includes.
+// host/studies/accuracy_variant_body.h is the single body every variant file includes; the
+// variant files and bsdf_variants() are generated from host/studies/accuracy_variants.cmake.
 #pragma once
 
 #include <cstdint>

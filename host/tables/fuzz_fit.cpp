@@ -1,5 +1,7 @@
 // fuzz_fit.cpp - see fuzz_fit.h for the model, the conventions and the table layout.
 #include "host/tables/fuzz_fit.h"
+#include "host/support/random.h"
+#include "host/support/stopwatch.h"
 
 #include <algorithm>
 #include <array>
@@ -26,15 +28,6 @@ namespace {
 
 constexpr double pi = 3.14159265358979323846;
 constexpr int fuzz_max_scattering = 100000;  // a walk this long is counted as absorbed
-
-// SplitMix64 finaliser (Steele, Lea, Flood 2014), used to derive per-cell seeds.
-std::uint64_t mix64(std::uint64_t x)
-{
-    x += 0x9E3779B97F4A7C15ull;
-    x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
-    x = (x ^ (x >> 27)) * 0x94D049BB133111EBull;
-    return x ^ (x >> 31);
-}
 
 // Uniform double in [0, 1) from the top 53 bits of a 64-bit Mersenne Twister output
 // (std::mt19937_64 is specified exactly by the standard, so streams are portable).
@@ -70,7 +63,8 @@ double fuzz_cross_section_from_roughness(double alpha)
     const double clamped = std::clamp(alpha, 0.0, 1.0);
     return std::max(clamped * clamped, fuzz_min_cross_section);
 }
-std::uint64_t fuzz_cell_seed(std::uint64_t seed, std::size_t cell) { return mix64(mix64(seed) ^ std::uint64_t(cell)); }
+// Per-cell seeds: SplitMix64 over the seed and the cell index.
+std::uint64_t fuzz_cell_seed(std::uint64_t seed, std::size_t cell) { return splitmix64(splitmix64(seed) ^ std::uint64_t(cell)); }
 
 // SGGX (Heitz et al. 2015) with S = diag(1, 1, c^2), c = cross_section: sigma(w) = sqrt(w^T S w),
 // D(m) = 1 / (pi sqrt(det S) (m^T S^-1 m)^2).
@@ -741,10 +735,10 @@ int fuzz_fit_main(int argc, const char* const* argv)
                 throw std::invalid_argument("unknown option '" + argument + "'");
             }
         }
-        const auto start = std::chrono::steady_clock::now();
+        const Stopwatch stopwatch;
         std::vector<FuzzCellReport> report;
         const std::vector<float> table = generate_fuzz_table(options, &report);
-        const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        const double seconds = stopwatch.seconds();
         char description[256];
         std::snprintf(description, sizeof(description),
                       "fuzz LTC table (host/tables/fuzz_fit.cpp): %d x %d, channels a, b, R; %" PRIu64

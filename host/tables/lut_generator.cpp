@@ -13,6 +13,7 @@
 #endif
 
 #include "host/tables/lut_generator.h"
+#include "host/support/random.h"
 
 #include "slang/math/openpbr_fresnel.h"
 #include "slang/math/openpbr_ggx.h"
@@ -99,17 +100,6 @@ std::uint32_t sobol_second_dimension(std::uint32_t index)
 
 // 32 random bits -> float in [0, 1): the top 24 bits, so the result is exact and below 1.
 float bits_to_unit_float(const std::uint32_t bits) { return float(bits >> 8) * (1.0f / 16777216.0f); }
-
-// 64-bit finaliser (xor-shift-multiply), a bijection that spreads every input bit over the output.
-std::uint64_t mix64(std::uint64_t x)
-{
-    x ^= x >> 30;
-    x *= 0xBF58476D1CE4E5B9ull;
-    x ^= x >> 27;
-    x *= 0x94D049BB133111EBull;
-    x ^= x >> 31;
-    return x;
-}
 
 // ---- Per-sample weights -----------------------------------------------------------------------
 
@@ -484,8 +474,8 @@ double lut_cos_phi_squared_from_coordinate(const double phi, const double mu, co
 
 std::uint64_t lut_cell_seed(const int table, const std::size_t cell, const std::uint64_t generator_seed)
 {
-    const std::uint64_t stream = mix64(generator_seed + 0x9E3779B97F4A7C15ull * std::uint64_t(table + 1));
-    return mix64(stream ^ std::uint64_t(cell));
+    const std::uint64_t stream = mix64_finalize(generator_seed + splitmix64_increment * std::uint64_t(table + 1));
+    return mix64_finalize(stream ^ std::uint64_t(cell));
 }
 
 double estimate_lut_entry(const int table, const double mu, const double r, const double x,

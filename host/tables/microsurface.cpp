@@ -1,5 +1,6 @@
 // microsurface.cpp - see microsurface.h. Double precision throughout; no shader code.
 #include "host/tables/microsurface.h"
+#include "host/support/random.h"
 
 #include <algorithm>
 #include <cmath>
@@ -28,18 +29,11 @@ Vector normalized(const Vector& a) { return a * (1.0 / std::sqrt(dot(a, a))); }
 
 constexpr double pi = 3.14159265358979323846;
 
-// SplitMix64 (Steele, Lea & Flood 2014): small, fast, and good enough for independent paths.
+// SplitMix64 (host/support/random.h): small, fast, and good enough for independent paths.
 struct Random
 {
-    std::uint64_t state;
-    double next()
-    {
-        std::uint64_t z = (state += 0x9e3779b97f4a7c15ull);
-        z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-        z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-        z ^= z >> 31;
-        return double(z >> 11) * (1.0 / 9007199254740992.0);
-    }
+    SplitMix64 generator;
+    double next() { return generator.next_double(); }
 };
 
 // Smith Lambda of isotropic GGX for a direction of either hemisphere (depends on |tan theta|).
@@ -206,7 +200,7 @@ MicrosurfaceAlbedo microsurface_albedo(const MicrosurfaceMaterial& material, dou
         throw std::invalid_argument("microsurface_albedo: paths must be > 0 and max_order >= 0");
     }
     const Vector view{std::sqrt(std::max(0.0, 1.0 - mu * mu)), 0.0, mu};
-    Random random{seed * 0x632be59bd9b4e019ull + 0x8cb92ba72f3d8dd7ull};
+    Random random{SplitMix64{seed * 0x632be59bd9b4e019ull + 0x8cb92ba72f3d8dd7ull}};
     double sum_r = 0.0, sum_r2 = 0.0, sum_t = 0.0, sum_t2 = 0.0;
     for (std::uint64_t path = 0; path < paths; ++path)
     {

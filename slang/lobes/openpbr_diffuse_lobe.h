@@ -121,12 +121,6 @@ OPENPBR_FUNC OpenPBR_LobeSample openpbr_diffuse_lobe_sample(OPENPBR_IN(OpenPBR_D
                   : openpbr_lobe_type(OPENPBR_LOBE_ID_DIFFUSE, OPENPBR_LOBE_TYPE_REFLECTION | OPENPBR_LOBE_TYPE_DIFFUSE));
 }
 
-OPENPBR_FUNC vec3 openpbr_diffuse_lobe_albedo(OPENPBR_IN(OpenPBR_DiffuseLobe) lobe, vec3 view)
-{
-    OPENPBR_UNUSED(view);  // the albedo at the prepared view is stored by init
-    return lobe.albedo;
-}
-
 OPENPBR_NAMESPACE_END
 
 #endif

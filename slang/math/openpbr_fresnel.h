@@ -28,14 +28,6 @@ OPENPBR_FUNC float openpbr_fresnel_dielectric(float cos_incident, float eta)
     return 0.5f * (r_s * r_s + r_p * r_p);
 }
 
-// Cosine of the refracted direction for an incident cosine and eta (0 under total internal
-// reflection), so callers that need both F and cos_t compute the square root once.
-OPENPBR_FUNC float openpbr_refracted_cosine(float cos_incident, float eta)
-{
-    const float cos2_i = cos_incident * cos_incident;
-    return openpbr_safe_sqrt(cos2_i + (1.0f - cos2_i) * (1.0f - 1.0f / (eta * eta)));
-}
-
 // Normal-incidence reflectance of a dielectric interface: ((eta - 1) / (eta + 1))^2.
 OPENPBR_FUNC float openpbr_dielectric_f0(float eta) { return openpbr_square((eta - 1.0f) / (eta + 1.0f)); }
 
@@ -44,12 +36,6 @@ OPENPBR_FUNC float openpbr_schlick_weight(float cos_theta)
     const float m = clamp(1.0f - cos_theta, 0.0f, 1.0f);
     const float m2 = m * m;
     return m2 * m2 * m;
-}
-
-// Schlick 1994: F0 + (1 - F0) (1 - cos)^5.
-OPENPBR_FUNC vec3 openpbr_fresnel_schlick(vec3 f0, float cos_theta)
-{
-    return f0 + (vec3(1.0f) - f0) * openpbr_schlick_weight(cos_theta);
 }
 
 // F82-tint metal Fresnel (OpenPBR 1.1 "Metal"; Hoffman 2019, "Fresnel Equations Considered

@@ -74,7 +74,6 @@ OPENPBR_FUNC vec3 openpbr_square(vec3 x) { return x * x; }
 OPENPBR_FUNC float openpbr_saturate(float x) { return clamp(x, 0.0f, 1.0f); }
 OPENPBR_FUNC vec3 openpbr_saturate(vec3 x) { return clamp(x, vec3(0.0f), vec3(1.0f)); }
 OPENPBR_FUNC float openpbr_max3(vec3 v) { return max(v.x, max(v.y, v.z)); }
-OPENPBR_FUNC float openpbr_average(vec3 v) { return (v.x + v.y + v.z) * (1.0f / 3.0f); }
 
 // sqrt that never sees a negative argument produced by rounding.
 OPENPBR_FUNC float openpbr_safe_sqrt(float x) { return openpbr_sqrt(max(x, 0.0f)); }

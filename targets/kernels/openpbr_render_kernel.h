@@ -34,7 +34,7 @@
 // -> float and OPENPBR_RENDER_ACCUMULATION_WRITE(index, value), and has the OpenPBR API in
 // scope. The kernel does not use openpbr_unpack_material (its read macro is fixed per
 // program in C++: two different definitions of that inline function would violate the ODR);
-// it expands the same field list (OPENPBR_MATERIAL_FIELDS) into its own reader.
+// it expands the same parameter table (OPENPBR_PARAMETERS) into its own reader.
 #ifndef OPENPBR_RENDER_KERNEL_H
 #define OPENPBR_RENDER_KERNEL_H
 
@@ -150,27 +150,31 @@ OPENPBR_FUNC vec3 openpbr_render_scene_vec3(uint index)
     return vec3(OPENPBR_RENDER_SCENE(index), OPENPBR_RENDER_SCENE(index + 1u), OPENPBR_RENDER_SCENE(index + 2u));
 }
 
-#define OPENPBR_RENDER_UNPACK_FLOAT(name) material.name = OPENPBR_RENDER_MATERIAL(index); index += 1u;
-#define OPENPBR_RENDER_UNPACK_COLOR(name)                                                                  \
+#define OPENPBR_RENDER_UNPACK_VEC3(name)                                                                   \
     material.name = vec3(OPENPBR_RENDER_MATERIAL(index), OPENPBR_RENDER_MATERIAL(index + 1u),             \
                          OPENPBR_RENDER_MATERIAL(index + 2u));                                              \
     index += 3u;
-#define OPENPBR_RENDER_UNPACK_VECTOR2(name) \
+#define OPENPBR_RENDER_UNPACK_FLOAT(name, default_value, low, high) \
+    material.name = OPENPBR_RENDER_MATERIAL(index); index += 1u;
+#define OPENPBR_RENDER_UNPACK_COLOR(name, default_r, default_g, default_b, low, high) OPENPBR_RENDER_UNPACK_VEC3(name)
+#define OPENPBR_RENDER_UNPACK_VECTOR2(name, default_x, default_y) \
     material.name = vec2(OPENPBR_RENDER_MATERIAL(index), OPENPBR_RENDER_MATERIAL(index + 1u)); index += 2u;
-#define OPENPBR_RENDER_UNPACK_BOOL(name) material.name = OPENPBR_RENDER_MATERIAL(index) != 0.0f; index += 1u;
-#define OPENPBR_RENDER_UNPACK_BASIS(name)                                                                  \
-    OPENPBR_RENDER_UNPACK_COLOR(name.tangent) OPENPBR_RENDER_UNPACK_COLOR(name.bitangent)                  \
-    OPENPBR_RENDER_UNPACK_COLOR(name.normal)
+#define OPENPBR_RENDER_UNPACK_BOOL(name, default_value) \
+    material.name = OPENPBR_RENDER_MATERIAL(index) != 0.0f; index += 1u;
+#define OPENPBR_RENDER_UNPACK_BASIS(name, normal_input, tangent_input)                                     \
+    OPENPBR_RENDER_UNPACK_VEC3(name.tangent) OPENPBR_RENDER_UNPACK_VEC3(name.bitangent)                    \
+    OPENPBR_RENDER_UNPACK_VEC3(name.normal)
 
 OPENPBR_FUNC OpenPBR_ResolvedInputs openpbr_render_unpack_material(uint material_index)
 {
     OpenPBR_ResolvedInputs material = openpbr_make_default_resolved_inputs();
     uint index = material_index * uint(OPENPBR_PACKED_MATERIAL_FLOATS);
-    OPENPBR_MATERIAL_FIELDS(OPENPBR_RENDER_UNPACK_FLOAT, OPENPBR_RENDER_UNPACK_COLOR, OPENPBR_RENDER_UNPACK_VECTOR2,
-                            OPENPBR_RENDER_UNPACK_BOOL, OPENPBR_RENDER_UNPACK_BASIS)
+    OPENPBR_PARAMETERS(OPENPBR_RENDER_UNPACK_FLOAT, OPENPBR_RENDER_UNPACK_COLOR, OPENPBR_RENDER_UNPACK_VECTOR2,
+                       OPENPBR_RENDER_UNPACK_BOOL, OPENPBR_RENDER_UNPACK_BASIS)
     return material;
 }
 
+#undef OPENPBR_RENDER_UNPACK_VEC3
 #undef OPENPBR_RENDER_UNPACK_FLOAT
 #undef OPENPBR_RENDER_UNPACK_COLOR
 #undef OPENPBR_RENDER_UNPACK_VECTOR2

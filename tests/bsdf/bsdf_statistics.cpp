@@ -1,5 +1,6 @@
 // Implementation of the statistical test machinery; see bsdf_statistics.h.
 #include "tests/bsdf/bsdf_statistics.h"
+#include "host/support/random.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -18,14 +19,8 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kTwoPi = 2.0 * kPi;
 
-// SplitMix64 finalizer: turns consecutive seeds into unrelated 64-bit values.
-std::uint64_t mix_seed(std::uint64_t x)
-{
-    x += 0x9e3779b97f4a7c15ull;
-    x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ull;
-    x = (x ^ (x >> 27)) * 0x94d049bb133111ebull;
-    return x ^ (x >> 31);
-}
+// SplitMix64 (host/support/random.h): turns consecutive seeds into unrelated 64-bit values.
+std::uint64_t mix_seed(const std::uint64_t x) { return openpbr::host::splitmix64(x); }
 
 bool is_finite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 bool is_non_negative(const glm::vec3& v) { return v.x >= 0.0f && v.y >= 0.0f && v.z >= 0.0f; }
