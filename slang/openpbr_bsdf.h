@@ -285,12 +285,48 @@ OPENPBR_FUNC float openpbr_kept_probability(float probability, float cut)
     return probability >= cut ? probability : 0.0f;
 }
 
+// Channel weights that steer lobe selection towards what a lobe adds to the current path: the
+// path throughput divided by its largest channel, each channel floored at
+// OPENPBR_SELECTION_CHANNEL_FLOOR. Selection probabilities are then proportional to
+// luminance(throughput x lobe albedo) (the luminance of the lobe's contribution to this path),
+// which lowers variance where the path carries mostly one color (e.g. after a red glass).
+// Any positive choice keeps every estimator unbiased (sample weights divide by the probability
+// actually used, and pdf reports the same mixture); the floor keeps every lobe the unweighted
+// selection would sample selectable, so a lobe whose albedo estimate misses a channel of its
+// value still covers it. NaN or negative channels count as 0, +inf as the largest float; an
+// all-zero throughput (or the project-form prepare, which passes white) weighs nothing:
+// exactly vec3(1).
+// Floor of a channel weight, e.g. 1e-3: a lobe seen only through a channel with 1/1000 of the
+// largest throughput keeps 1/1000 of its unweighted share.
+#define OPENPBR_SELECTION_CHANNEL_FLOOR 1e-3f
+
+OPENPBR_FUNC vec3 openpbr_selection_channel_weights(vec3 path_throughput)
+{
+    const vec3 nonnegative = openpbr_clamp_finite(path_throughput, 0.0f, OPENPBR_FLOAT_MAX);
+    const float largest = openpbr_max3(nonnegative);
+    if (!(largest > OPENPBR_FLOAT_MIN_NORMAL))
+    {
+        return vec3(1.0f);
+    }
+    return max(nonnegative / largest, vec3(OPENPBR_SELECTION_CHANNEL_FLOOR));
+}
+
+// The luminance of a white lobe's weight under the channel weights: exactly 1 for white weights
+// (so the project-form prepare keeps its probabilities bit for bit), the luminance otherwise.
+OPENPBR_FUNC float openpbr_selection_white_scale(vec3 channel_weights)
+{
+    const bool white = channel_weights.x == channel_weights.y && channel_weights.y == channel_weights.z;
+    return white ? channel_weights.x : openpbr_luminance(channel_weights);
+}
+
 // Every lobe below is set up only where its weight is above zero (issue "a lobe whose weight is
 // zero costs nothing"): the others keep the empty lobe and selection probability 0, which eval,
 // pdf and sample never look at. With a feature toggled off its weight is the constant 0, so the
 // compiler removes the set-up altogether. `inputs` have passed openpbr_prepare_inputs.
+// `path_throughput` only steers lobe selection (openpbr_selection_channel_weights); white
+// gives the unweighted probabilities.
 OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare_lobes_of(OPENPBR_IN(OpenPBR_ResolvedInputs) inputs, vec3 view_world,
-                                                           vec3 rgb_wavelengths_nm)
+                                                           vec3 rgb_wavelengths_nm, vec3 path_throughput)
 {
     OpenPBR_PreparedBsdf bsdf;
     bsdf.view_world = openpbr_safe_normalize(view_world, inputs.geometry_basis.normal);
@@ -592,17 +628,22 @@ OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare_lobes_of(OPENPBR_IN(OpenPBR_Re
     // Estimate for selection: the light-side transmittance taken equal to the view side's.
     const vec3 under_reflected = bsdf.under_coat_constant + bsdf.under_coat_absorbing * coat_view_transmittance;
 
-    // Selection probability proportional to each lobe's estimated albedo (luminance); the
-    // probabilities only steer sampling, so estimates need not be exact.
-    const float fuzz_p = fuzz_weight > 0.0f ? openpbr_luminance(openpbr_fuzz_lobe_albedo(bsdf.fuzz, bsdf.fuzz_view)) : 0.0f;
-    const float coat_p = coat_weight > 0.0f ? under_fuzz * coat_weight * coat_albedo : 0.0f;
-    const float specular_p = dielectric_weight > 0.0f ? openpbr_luminance(specular_estimate * under_reflected) : 0.0f;
-    const float metal_p = metalness > 0.0f ? openpbr_luminance(metal_albedo * under_reflected) : 0.0f;
-    const float diffuse_p = openpbr_luminance(diffuse_estimate * under_reflected);
-    const float diffuse_transmission_p = openpbr_luminance(diffuse_transmission_estimate * bsdf.under_coat_transmitted);
-    const float transmission_p = openpbr_luminance(transmission_estimate * bsdf.under_coat_transmitted);
-    const float thin_transmission_p = openpbr_luminance(thin_transmission_estimate * bsdf.under_coat_transmitted);
-    const float pass_through_p = 1.0f - opacity;
+    // Selection probability proportional to each lobe's estimated albedo (luminance), weighted
+    // by the path's channel weights; the probabilities only steer sampling, so estimates need
+    // not be exact.
+    const vec3 channel = openpbr_selection_channel_weights(path_throughput);
+    const float white = openpbr_selection_white_scale(channel);
+    const float fuzz_p =
+        fuzz_weight > 0.0f ? openpbr_luminance(openpbr_fuzz_lobe_albedo(bsdf.fuzz, bsdf.fuzz_view) * channel) : 0.0f;
+    const float coat_p = coat_weight > 0.0f ? under_fuzz * coat_weight * coat_albedo * white : 0.0f;
+    const float specular_p = dielectric_weight > 0.0f ? openpbr_luminance(specular_estimate * under_reflected * channel) : 0.0f;
+    const float metal_p = metalness > 0.0f ? openpbr_luminance(metal_albedo * under_reflected * channel) : 0.0f;
+    const float diffuse_p = openpbr_luminance(diffuse_estimate * under_reflected * channel);
+    const float diffuse_transmission_p =
+        openpbr_luminance(diffuse_transmission_estimate * bsdf.under_coat_transmitted * channel);
+    const float transmission_p = openpbr_luminance(transmission_estimate * bsdf.under_coat_transmitted * channel);
+    const float thin_transmission_p = openpbr_luminance(thin_transmission_estimate * bsdf.under_coat_transmitted * channel);
+    const float pass_through_p = (1.0f - opacity) * white;
     const float raw_total = fuzz_p + coat_p + specular_p + metal_p + diffuse_p + diffuse_transmission_p + transmission_p +
                             thin_transmission_p + pass_through_p;
     // Negligible lobes are dropped: probability 0, so eval, pdf and sample skip them alike.
@@ -669,7 +710,7 @@ OPENPBR_FUNC vec3 openpbr_prepare_emission(OPENPBR_IN(OpenPBR_ResolvedInputs) ra
 OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare_lobes(OPENPBR_IN(OpenPBR_ResolvedInputs) raw_inputs, vec3 view_world,
                                                         vec3 rgb_wavelengths_nm)
 {
-    return openpbr_prepare_lobes_of(openpbr_prepare_inputs(raw_inputs), view_world, rgb_wavelengths_nm);
+    return openpbr_prepare_lobes_of(openpbr_prepare_inputs(raw_inputs), view_world, rgb_wavelengths_nm, vec3(1.0f));
 }
 
 OPENPBR_FUNC OpenPBR_HomogeneousVolume openpbr_prepare_volume(OPENPBR_IN(OpenPBR_ResolvedInputs) raw_inputs)
@@ -677,14 +718,23 @@ OPENPBR_FUNC OpenPBR_HomogeneousVolume openpbr_prepare_volume(OPENPBR_IN(OpenPBR
     return openpbr_make_volume(openpbr_prepare_inputs(raw_inputs));
 }
 
-OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare(OPENPBR_IN(OpenPBR_ResolvedInputs) inputs, vec3 view_world,
-                                                  vec3 rgb_wavelengths_nm)
+// The whole preparation with lobe selection steered by the path's throughput (see
+// openpbr_selection_channel_weights; results stay unbiased): what the established-API
+// openpbr_prepare(inputs, path_throughput, ...) runs. vec3(1.0f) is openpbr_prepare.
+OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare_for_path(OPENPBR_IN(OpenPBR_ResolvedInputs) inputs, vec3 view_world,
+                                                           vec3 rgb_wavelengths_nm, vec3 path_throughput)
 {
     // The input contract and the toggles run once, for the lobes and the emission.
     const OpenPBR_ResolvedInputs prepared_inputs = openpbr_prepare_inputs(inputs);
-    OpenPBR_PreparedBsdf bsdf = openpbr_prepare_lobes_of(prepared_inputs, view_world, rgb_wavelengths_nm);
+    OpenPBR_PreparedBsdf bsdf = openpbr_prepare_lobes_of(prepared_inputs, view_world, rgb_wavelengths_nm, path_throughput);
     bsdf.emission = openpbr_prepare_emission_of(prepared_inputs, view_world);
     return bsdf;
+}
+
+OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare(OPENPBR_IN(OpenPBR_ResolvedInputs) inputs, vec3 view_world,
+                                                  vec3 rgb_wavelengths_nm)
+{
+    return openpbr_prepare_for_path(inputs, view_world, rgb_wavelengths_nm, vec3(1.0f));
 }
 
 OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare(OPENPBR_IN(OpenPBR_ResolvedInputs) inputs, vec3 view_world)

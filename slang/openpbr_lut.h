@@ -159,7 +159,9 @@ inline constexpr float openpbr_lut_data[OPENPBR_LUT_TOTAL_COUNT] = {
 #include "generated/openpbr_lut_values.inc"
 };
 }
-#define OPENPBR_LUT_FETCH(index) openpbr_lut_data[index]
+// Qualified: a host interop layer (OPENPBR_USE_CUSTOM_INTEROP) may put the BSDF in another
+// namespace; the shared table stays in openpbr.
+#define OPENPBR_LUT_FETCH(index) ::openpbr::openpbr_lut_data[index]
 #endif
 #elif defined(OPENPBR_LUT_MODE_BUFFER) && OPENPBR_LUT_16BIT
 // 16-bit table values (OPENPBR_LUT_16BIT): IEEE halves, two per 32-bit word, the value at

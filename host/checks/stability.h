@@ -22,6 +22,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <glm/glm.hpp>  // first: the OpenPBR headers require it (interop/openpbr_interop_cpp.h)
 #include "slang/openpbr_resolved_inputs.h"
 
 namespace openpbr::host {

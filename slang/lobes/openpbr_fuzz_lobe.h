@@ -109,7 +109,9 @@ inline constexpr float openpbr_fuzz_ltc_data[OPENPBR_FUZZ_LTC_TOTAL_COUNT] = {
 #include "../generated/openpbr_fuzz_ltc_values.inc"
 };
 }
-#define OPENPBR_FUZZ_LTC_FETCH(index) openpbr_fuzz_ltc_data[index]
+// Qualified: a host interop layer (OPENPBR_USE_CUSTOM_INTEROP) may put the BSDF in another
+// namespace; the shared table stays in openpbr.
+#define OPENPBR_FUZZ_LTC_FETCH(index) ::openpbr::openpbr_fuzz_ltc_data[index]
 #endif
 #elif defined(OPENPBR_FUZZ_LTC_MODE_BUFFER)
 #if defined(OPENPBR_LANGUAGE_TARGET_SLANG)
