@@ -50,6 +50,13 @@ struct OpenPBR_BsdfSample
 // wavelengths of the Rec.709 primaries, e.g. for dispersion in an RGB renderer.
 #define OPENPBR_DEFAULT_RGB_WAVELENGTHS_NM vec3(612.0f, 549.0f, 465.0f)
 
+// The same as a function, for callers that see the library through a module (Slang `import
+// openpbr;` exports declarations, not macros), e.g. to pass an exterior IOR to openpbr_prepare.
+OPENPBR_FUNC vec3 openpbr_default_rgb_wavelengths_nm()
+{
+    return OPENPBR_DEFAULT_RGB_WAVELENGTHS_NM;
+}
+
 struct OpenPBR_PreparedBsdf
 {
     OpenPBR_Basis basis;       // base shading frame, view side up (flipped for back faces)
@@ -323,10 +330,12 @@ OPENPBR_FUNC float openpbr_selection_white_scale(vec3 channel_weights)
 // zero costs nothing"): the others keep the empty lobe and selection probability 0, which eval,
 // pdf and sample never look at. With a feature toggled off its weight is the constant 0, so the
 // compiler removes the set-up altogether. `inputs` have passed openpbr_prepare_inputs.
-// `path_throughput` only steers lobe selection (openpbr_selection_channel_weights); white
-// gives the unweighted probabilities.
+// exterior_ior: the absolute IOR of the medium the view is in (README "Exterior medium"),
+// already passed through openpbr_contract_exterior_ior. `path_throughput` only steers lobe
+// selection (openpbr_selection_channel_weights); white gives the unweighted probabilities.
 OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare_lobes_of(OPENPBR_IN(OpenPBR_ResolvedInputs) inputs, vec3 view_world,
-                                                           vec3 rgb_wavelengths_nm, vec3 path_throughput)
+                                                           vec3 rgb_wavelengths_nm, float exterior_ior,
+                                                           vec3 path_throughput)
 {
     OpenPBR_PreparedBsdf bsdf;
     bsdf.view_world = openpbr_safe_normalize(view_world, inputs.geometry_basis.normal);
@@ -369,10 +378,14 @@ OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare_lobes_of(OPENPBR_IN(OpenPBR_Re
     bsdf.pass_through_weight = vec3(1.0f - opacity);
 
     // ---- IORs (spec "Base Substrate", "Coat" total internal reflection fix) ----
-    const float coat_ior = inputs.coat_ior;
-    const float base_ior = inputs.specular_ior;
-    const float base_over_coat = coat_ior > base_ior ? coat_ior / base_ior : base_ior / coat_ior;
-    const float eta_base = openpbr_modulated_ior(coat_weight > 0.0f ? mix(base_ior, base_over_coat, coat_weight) : base_ior,
+    // Every interface sees a relative IOR: the coat against the exterior medium, the base
+    // against the exterior (uncoated) or the coat (spec "Coat": the base's relative IOR under
+    // the coat, inverted where the coat is the denser medium), blended by coat_weight.
+    const float coat_eta = openpbr_relative_ior(inputs.coat_ior, exterior_ior);
+    const float base_eta = openpbr_relative_ior(inputs.specular_ior, exterior_ior);
+    const float base_over_coat = inputs.coat_ior > inputs.specular_ior ? inputs.coat_ior / inputs.specular_ior
+                                                                       : inputs.specular_ior / inputs.coat_ior;
+    const float eta_base = openpbr_modulated_ior(coat_weight > 0.0f ? mix(base_eta, base_over_coat, coat_weight) : base_eta,
                                                  inputs.specular_weight);
     const vec3 eta_channels = openpbr_dispersive_ior(eta_base, inputs.transmission_dispersion_abbe_number,
                                                      thin_walled ? 0.0f : inputs.transmission_dispersion_scale,
@@ -403,7 +416,7 @@ OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare_lobes_of(OPENPBR_IN(OpenPBR_Re
     bsdf.under_coat_absorbing = vec3(0.0f);
     bsdf.coat_half_log_color = vec3(0.0f);
     bsdf.coat_absorbs = false;
-    bsdf.coat_inverse_eta_squared = 1.0f / (coat_ior * coat_ior);
+    bsdf.coat_inverse_eta_squared = 1.0f / (coat_eta * coat_eta);
     bsdf.under_coat_transmitted = vec3(1.0f);
     const vec3 zero = vec3(0.0f);
     const OpenPBR_Fresnel no_fresnel = openpbr_make_constant_fresnel(vec3(1.0f));
@@ -458,14 +471,14 @@ OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare_lobes_of(OPENPBR_IN(OpenPBR_Re
         const vec2 coat_alpha = openpbr_ggx_alpha(coat_roughness, inputs.coat_roughness_anisotropy);
         const OpenPBR_GgxLobeAlbedo coat_lobe_albedo =
             openpbr_ggx_lobe_albedo(coat_roughness, inputs.coat_roughness_anisotropy, coat_alpha, bsdf.coat_view);
-        const OpenPBR_Fresnel coat_fresnel = openpbr_make_dielectric_fresnel(coat_ior, vec3(1.0f));
+        const OpenPBR_Fresnel coat_fresnel = openpbr_make_dielectric_fresnel(coat_eta, vec3(1.0f));
         const vec3 coat_compensation =
-            openpbr_multiple_scattering_compensation(vec3(openpbr_dielectric_f0(coat_ior)), coat_lobe_albedo.albedo);
+            openpbr_multiple_scattering_compensation(vec3(openpbr_dielectric_f0(coat_eta)), coat_lobe_albedo.albedo);
         bsdf.coat = openpbr_microfacet_reflection_lobe_init(coat_compensation * (under_fuzz * coat_weight), coat_alpha,
                                                             coat_fresnel, OPENPBR_LOBE_ID_COAT, 1.0f, bsdf.coat_view);
         const float coat_single_albedo =
-            bsdf.coat.is_delta ? openpbr_fresnel_dielectric(coat_mu, coat_ior)
-                               : openpbr_dielectric_reflection_albedo(coat_mu, coat_lobe_albedo.reflection_alpha, coat_ior) *
+            bsdf.coat.is_delta ? openpbr_fresnel_dielectric(coat_mu, coat_eta)
+                               : openpbr_dielectric_reflection_albedo(coat_mu, coat_lobe_albedo.reflection_alpha, coat_eta) *
                                      coat_lobe_albedo.reflection_scale;
         coat_albedo = min(coat_single_albedo * coat_compensation.x, 1.0f);
         bsdf.coat_absorbs = !(inputs.coat_color.x == 1.0f && inputs.coat_color.y == 1.0f && inputs.coat_color.z == 1.0f);
@@ -481,9 +494,10 @@ OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare_lobes_of(OPENPBR_IN(OpenPBR_Re
     // Dielectric specular reflection, tinted by specular_color (reflection from above only).
     // Thin film on the base (spec "Thin-film iridescence"): over the metal and the dielectric,
     // under the coat; the medium above it is the coat where there is one (IOR blended by
-    // coat_weight, the spec's "depending on coat coverage").
+    // coat_weight, the spec's "depending on coat coverage"), otherwise the exterior medium.
+    // Absolute IORs: the film's Fresnel model reads n_outside, n_film and n_base themselves.
     const float film_weight = inputs.thin_film_weight;
-    const float film_outside_ior = coat_weight > 0.0f ? mix(1.0f, coat_ior, coat_weight) : 1.0f;
+    const float film_outside_ior = coat_weight > 0.0f ? mix(exterior_ior, inputs.coat_ior, coat_weight) : exterior_ior;
     const float dielectric_weight = 1.0f - metalness;
     vec3 specular_albedo = vec3(0.0f);
     if (dielectric_weight > 0.0f)
@@ -610,8 +624,8 @@ OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare_lobes_of(OPENPBR_IN(OpenPBR_Re
         const vec3 base_albedo =
             openpbr_saturate(specular_estimate + diffuse_estimate + metal_albedo + diffuse_transmission_estimate +
                              transmission_estimate + thin_transmission_estimate);
-        const float k_specular = openpbr_fresnel_dielectric(coat_mu, coat_ior);
-        const float k_rough = 1.0f - (1.0f - openpbr_average_fresnel(coat_ior)) * bsdf.coat_inverse_eta_squared;
+        const float k_specular = openpbr_fresnel_dielectric(coat_mu, coat_eta);
+        const float k_rough = 1.0f - (1.0f - openpbr_average_fresnel(coat_eta)) * bsdf.coat_inverse_eta_squared;
         const float specular_f0 = openpbr_dielectric_f0(eta_base);
         const float base_surface_roughness =
             mix(mix(1.0f, inputs.specular_roughness, min(specular_f0 * inputs.specular_weight, 1.0f)), inputs.specular_roughness,
@@ -678,7 +692,8 @@ OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare_lobes_of(OPENPBR_IN(OpenPBR_Re
 // lerp(1, T_coat, C) with T_coat one pass through the coat towards the view; zero when seen
 // from inside a non-thin-walled object (the emitting surface faces outwards).
 // `inputs` have passed openpbr_prepare_inputs.
-OPENPBR_FUNC vec3 openpbr_prepare_emission_of(OPENPBR_IN(OpenPBR_ResolvedInputs) inputs, vec3 view_world)
+OPENPBR_FUNC vec3 openpbr_prepare_emission_of(OPENPBR_IN(OpenPBR_ResolvedInputs) inputs, vec3 view_world,
+                                              float exterior_ior)
 {
     if (!(inputs.emission_luminance > 0.0f))
     {
@@ -695,22 +710,37 @@ OPENPBR_FUNC vec3 openpbr_prepare_emission_of(OPENPBR_IN(OpenPBR_ResolvedInputs)
     {
         const float coat_mu = min(abs(dot(view, inputs.geometry_coat_basis.normal)), 1.0f);
         const vec3 half_log_color = 0.5f * log(max(inputs.coat_color, vec3(1e-6f)));
-        const vec3 coat_transmittance =
-            openpbr_coat_transmittance(half_log_color, 1.0f / (inputs.coat_ior * inputs.coat_ior), coat_mu);
+        const float coat_eta = openpbr_relative_ior(inputs.coat_ior, exterior_ior);
+        const vec3 coat_transmittance = openpbr_coat_transmittance(half_log_color, 1.0f / (coat_eta * coat_eta), coat_mu);
         attenuation = mix(vec3(1.0f), coat_transmittance, inputs.coat_weight);
     }
     return inputs.emission_color * inputs.emission_luminance * attenuation * inputs.geometry_opacity;
 }
 
+// Staged and full forms. exterior_ior (default 1, air) is the absolute IOR of the medium the
+// view is in, e.g. 1.33 for an object under water; the shorter forms pass 1.
+OPENPBR_FUNC vec3 openpbr_prepare_emission(OPENPBR_IN(OpenPBR_ResolvedInputs) raw_inputs, vec3 view_world, float exterior_ior)
+{
+    return openpbr_prepare_emission_of(openpbr_prepare_inputs(raw_inputs), view_world,
+                                       openpbr_contract_exterior_ior(exterior_ior));
+}
+
 OPENPBR_FUNC vec3 openpbr_prepare_emission(OPENPBR_IN(OpenPBR_ResolvedInputs) raw_inputs, vec3 view_world)
 {
-    return openpbr_prepare_emission_of(openpbr_prepare_inputs(raw_inputs), view_world);
+    return openpbr_prepare_emission(raw_inputs, view_world, 1.0f);
+}
+
+OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare_lobes(OPENPBR_IN(OpenPBR_ResolvedInputs) raw_inputs, vec3 view_world,
+                                                        vec3 rgb_wavelengths_nm, float exterior_ior)
+{
+    return openpbr_prepare_lobes_of(openpbr_prepare_inputs(raw_inputs), view_world, rgb_wavelengths_nm,
+                                    openpbr_contract_exterior_ior(exterior_ior), vec3(1.0f));
 }
 
 OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare_lobes(OPENPBR_IN(OpenPBR_ResolvedInputs) raw_inputs, vec3 view_world,
                                                         vec3 rgb_wavelengths_nm)
 {
-    return openpbr_prepare_lobes_of(openpbr_prepare_inputs(raw_inputs), view_world, rgb_wavelengths_nm, vec3(1.0f));
+    return openpbr_prepare_lobes(raw_inputs, view_world, rgb_wavelengths_nm, 1.0f);
 }
 
 OPENPBR_FUNC OpenPBR_HomogeneousVolume openpbr_prepare_volume(OPENPBR_IN(OpenPBR_ResolvedInputs) raw_inputs)
@@ -722,24 +752,33 @@ OPENPBR_FUNC OpenPBR_HomogeneousVolume openpbr_prepare_volume(OPENPBR_IN(OpenPBR
 // openpbr_selection_channel_weights; results stay unbiased): what the established-API
 // openpbr_prepare(inputs, path_throughput, ...) runs. vec3(1.0f) is openpbr_prepare.
 OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare_for_path(OPENPBR_IN(OpenPBR_ResolvedInputs) inputs, vec3 view_world,
-                                                           vec3 rgb_wavelengths_nm, vec3 path_throughput)
+                                                           vec3 rgb_wavelengths_nm, float exterior_ior,
+                                                           vec3 path_throughput)
 {
     // The input contract and the toggles run once, for the lobes and the emission.
     const OpenPBR_ResolvedInputs prepared_inputs = openpbr_prepare_inputs(inputs);
-    OpenPBR_PreparedBsdf bsdf = openpbr_prepare_lobes_of(prepared_inputs, view_world, rgb_wavelengths_nm, path_throughput);
-    bsdf.emission = openpbr_prepare_emission_of(prepared_inputs, view_world);
+    const float exterior = openpbr_contract_exterior_ior(exterior_ior);
+    OpenPBR_PreparedBsdf bsdf =
+        openpbr_prepare_lobes_of(prepared_inputs, view_world, rgb_wavelengths_nm, exterior, path_throughput);
+    bsdf.emission = openpbr_prepare_emission_of(prepared_inputs, view_world, exterior);
     return bsdf;
+}
+
+OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare(OPENPBR_IN(OpenPBR_ResolvedInputs) inputs, vec3 view_world,
+                                                  vec3 rgb_wavelengths_nm, float exterior_ior)
+{
+    return openpbr_prepare_for_path(inputs, view_world, rgb_wavelengths_nm, exterior_ior, vec3(1.0f));
 }
 
 OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare(OPENPBR_IN(OpenPBR_ResolvedInputs) inputs, vec3 view_world,
                                                   vec3 rgb_wavelengths_nm)
 {
-    return openpbr_prepare_for_path(inputs, view_world, rgb_wavelengths_nm, vec3(1.0f));
+    return openpbr_prepare(inputs, view_world, rgb_wavelengths_nm, 1.0f);
 }
 
 OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare(OPENPBR_IN(OpenPBR_ResolvedInputs) inputs, vec3 view_world)
 {
-    return openpbr_prepare(inputs, view_world, OPENPBR_DEFAULT_RGB_WAVELENGTHS_NM);
+    return openpbr_prepare(inputs, view_world, OPENPBR_DEFAULT_RGB_WAVELENGTHS_NM, 1.0f);
 }
 
 // Sum of the continuous lobes at one world-space light direction, split diffuse / specular.

@@ -39,12 +39,12 @@ OPENPBR_GLOBAL_CONSTANT float OpenPBR_VacuumIor = 1.0f;
 // proportional to luminance(throughput x lobe albedo), openpbr_selection_channel_weights);
 // eval, pdf and sample stay unbiased for any value (vec3(1.0f): the unweighted selection of
 // the project-form openpbr_prepare). exterior_ior: the IOR of the medium the surface is
-// embedded in, e.g. OpenPBR_VacuumIor.
+// embedded in, e.g. OpenPBR_VacuumIor (1.33 under water): every interface sees the relative
+// IOR (openpbr_prepare_lobes_of; NaN counts as 1, clamped to [1/3, 3]).
 OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare(OPENPBR_IN(OpenPBR_ResolvedInputs) inputs, vec3 path_throughput,
                                                   vec3 rgb_wavelengths_nm, float exterior_ior, vec3 view_direction)
 {
-    OPENPBR_UNUSED(exterior_ior);
-    return openpbr_prepare_for_path(inputs, view_direction, rgb_wavelengths_nm, path_throughput);
+    return openpbr_prepare_for_path(inputs, view_direction, rgb_wavelengths_nm, exterior_ior, path_throughput);
 }
 
 // Out-parameter form of the project's openpbr_sample(prepared, u): pdf <= 0 means no sample
@@ -83,16 +83,17 @@ OPENPBR_FUNC void openpbr_prepare_lobes(OPENPBR_INOUT(OpenPBR_PreparedBsdf) prep
                                         OPENPBR_IN(OpenPBR_ResolvedInputs) inputs, vec3 path_throughput,
                                         vec3 rgb_wavelengths_nm, float exterior_ior, vec3 view_direction)
 {
-    OPENPBR_UNUSED(exterior_ior);
     const OpenPBR_HomogeneousVolume volume = prepared.volume;
-    prepared = openpbr_prepare_lobes_of(openpbr_prepare_inputs(inputs), view_direction, rgb_wavelengths_nm, path_throughput);
+    prepared = openpbr_prepare_lobes_of(openpbr_prepare_inputs(inputs), view_direction, rgb_wavelengths_nm,
+                                        openpbr_contract_exterior_ior(exterior_ior), path_throughput);
     prepared.volume = volume;
 }
 
 OPENPBR_FUNC void openpbr_prepare_emission(OPENPBR_INOUT(OpenPBR_PreparedBsdf) prepared,
-                                           OPENPBR_IN(OpenPBR_ResolvedInputs) inputs, vec3 view_direction)
+                                           OPENPBR_IN(OpenPBR_ResolvedInputs) inputs, float exterior_ior,
+                                           vec3 view_direction)
 {
-    prepared.emission = openpbr_prepare_emission(inputs, view_direction);
+    prepared.emission = openpbr_prepare_emission(inputs, view_direction, exterior_ior);
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -401,6 +401,10 @@ std::vector<float> make_queries(std::size_t query_count, std::size_t material_co
         {
             out[k] = std::min(uniform(generator), 0.99999994f);
         }
+        // Exterior IOR: mostly air; one query in eight under water (1.33), one in eight inside
+        // glass (1.5), so the relative IOR of every interface also falls below 1.
+        const float exterior_choice = uniform(generator);
+        out[10] = exterior_choice < 0.75f ? 1.0f : (exterior_choice < 0.875f ? 1.33f : 1.5f);
     }
     return queries;
 }

@@ -16,5 +16,5 @@ layout(std430, set = 0, binding = 2) writeonly buffer ApiCompatResults { float a
 void main()
 {
     api_compat_shade(openpbr_make_default_resolved_inputs(), vec3(0.0f, 0.0f, 1.0f), normalize(vec3(0.3f, 0.2f, 0.9f)),
-                     vec3(1.0f, 0.5f, 0.25f), vec3(0.3f, 0.6f, 0.9f), vec2(0.4f, 0.7f), 0u);
+                     vec3(1.0f, 0.5f, 0.25f), OpenPBR_VacuumIor, vec3(0.3f, 0.6f, 0.9f), vec2(0.4f, 0.7f), 0u);
 }

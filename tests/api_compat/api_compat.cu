@@ -26,6 +26,6 @@ __global__ void api_compat_kernel(float* results)
     using namespace openpbr;
     api_compat_results_device = results;
     api_compat_shade(openpbr_make_default_resolved_inputs(), vec3(0.0f, 0.0f, 1.0f), normalize(vec3(0.3f, 0.2f, 0.9f)),
-                     vec3(1.0f, 0.5f, 0.25f), vec3(0.3f, 0.6f, 0.9f), vec2(0.4f, 0.7f),
+                     vec3(1.0f, 0.5f, 0.25f), OpenPBR_VacuumIor, vec3(0.3f, 0.6f, 0.9f), vec2(0.4f, 0.7f),
                      static_cast<unsigned>(threadIdx.x) * API_COMPAT_RESULT_COUNT);
 }

@@ -11,5 +11,5 @@ RWStructuredBuffer<float> api_compat_results : register(u2);
 void main(uint3 thread_id : SV_DispatchThreadID)
 {
     api_compat_shade(openpbr_make_default_resolved_inputs(), float3(0.0f, 0.0f, 1.0f), normalize(float3(0.3f, 0.2f, 0.9f)),
-                     float3(1.0f, 0.5f, 0.25f), float3(0.3f, 0.6f, 0.9f), float2(0.4f, 0.7f), thread_id.x * API_COMPAT_RESULT_COUNT);
+                     float3(1.0f, 0.5f, 0.25f), OpenPBR_VacuumIor, float3(0.3f, 0.6f, 0.9f), float2(0.4f, 0.7f), thread_id.x * API_COMPAT_RESULT_COUNT);
 }

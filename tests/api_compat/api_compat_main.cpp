@@ -121,15 +121,18 @@ int main()
             const glm::vec3 throughput = query % 4 == 0 ? glm::vec3(1.0f) : random.color();
             const glm::vec3 u(random.next(), random.next(), random.next());
             const glm::vec2 medium_u(random.next(), random.next());
-            api_compat_shade(inputs, view, light, throughput, u, medium_u, 0u);
+            // In air (the seed's OpenPBR_VacuumIor) and in water or glass around the object.
+            const float exterior_ior = query % 3 == 0 ? 1.0f : (query % 3 == 1 ? 1.33f : 1.5f);
+            api_compat_shade(inputs, view, light, throughput, exterior_ior, u, medium_u, 0u);
 
             // The same step through the project form.
             const OpenPBR_PreparedBsdf prepared =
-                openpbr_prepare_for_path(inputs, view, OPENPBR_DEFAULT_RGB_WAVELENGTHS_NM, throughput);
+                openpbr_prepare_for_path(inputs, view, OPENPBR_DEFAULT_RGB_WAVELENGTHS_NM, exterior_ior, throughput);
             if (throughput == glm::vec3(1.0f))
             {
                 // White throughput: the plain project-form prepare gives the same lobes.
-                const OpenPBR_PreparedBsdf plain = openpbr_prepare(inputs, view, OPENPBR_DEFAULT_RGB_WAVELENGTHS_NM);
+                const OpenPBR_PreparedBsdf plain =
+                    openpbr_prepare(inputs, view, OPENPBR_DEFAULT_RGB_WAVELENGTHS_NM, exterior_ior);
                 expect_same("plain prepare pdf", 9, openpbr_pdf(plain, light));
             }
             const OpenPBR_DiffuseSpecular value = openpbr_eval(prepared, light);

@@ -26,10 +26,11 @@ OPENPBR_FUNC void api_compat_write_vec3(uint index, vec3 value)
 // One shading step of a path tracer: prepare at a hit, evaluate a light, sample the BSDF, the
 // staged preparation, the interior medium and the shadow shortcut. base: first result index.
 OPENPBR_FUNC void api_compat_shade(OPENPBR_IN(OpenPBR_ResolvedInputs) inputs, vec3 view_direction,
-                                   vec3 light_to_evaluate, vec3 path_throughput, vec3 rand, vec2 medium_rand, uint base)
+                                   vec3 light_to_evaluate, vec3 path_throughput, float exterior_ior, vec3 rand,
+                                   vec2 medium_rand, uint base)
 {
     const OpenPBR_PreparedBsdf prepared =
-        openpbr_prepare(inputs, path_throughput, OpenPBR_BaseRgbWavelengths_nm, OpenPBR_VacuumIor, view_direction);
+        openpbr_prepare(inputs, path_throughput, OpenPBR_BaseRgbWavelengths_nm, exterior_ior, view_direction);
 
     const OpenPBR_DiffuseSpecular value = openpbr_eval(prepared, light_to_evaluate);
     const float light_pdf = openpbr_pdf(prepared, light_to_evaluate);
@@ -53,8 +54,8 @@ OPENPBR_FUNC void api_compat_shade(OPENPBR_IN(OpenPBR_ResolvedInputs) inputs, ve
     // Staged preparation, in its order; the result must match the one-call prepare.
     OpenPBR_PreparedBsdf staged = prepared;
     openpbr_prepare_volume(staged, inputs);
-    openpbr_prepare_lobes(staged, inputs, path_throughput, OpenPBR_BaseRgbWavelengths_nm, OpenPBR_VacuumIor, view_direction);
-    openpbr_prepare_emission(staged, inputs, view_direction);
+    openpbr_prepare_lobes(staged, inputs, path_throughput, OpenPBR_BaseRgbWavelengths_nm, exterior_ior, view_direction);
+    openpbr_prepare_emission(staged, inputs, exterior_ior, view_direction);
     api_compat_write_vec3(base + 24u, openpbr_get_sum_of_diffuse_specular(openpbr_eval(staged, light_to_evaluate)));
     API_COMPAT_WRITE(base + 27u, openpbr_pdf(staged, light_to_evaluate));
     api_compat_write_vec3(base + 28u, staged.emission);

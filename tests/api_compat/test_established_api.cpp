@@ -194,8 +194,9 @@ TEST(EstablishedApi, StagedPreparationEqualsOneCall)
         inputs.specular_roughness = random.next();
         const glm::vec3 view = glm::normalize(random.next3() * 2.0f - 1.0f);
         const glm::vec3 throughput = random.next3();
-        const OpenPBR_PreparedBsdf one_call =
-            openpbr_prepare(inputs, throughput, OpenPBR_BaseRgbWavelengths_nm, OpenPBR_VacuumIor, view);
+        // In air and under water (the coat's and the base's relative IORs change).
+        const float exterior_ior = index % 2 == 0 ? OpenPBR_VacuumIor : 1.33f;
+        const OpenPBR_PreparedBsdf one_call = openpbr_prepare(inputs, throughput, OpenPBR_BaseRgbWavelengths_nm, exterior_ior, view);
         // Start from another material's preparation: every field the stages own must be
         // overwritten.
         OpenPBR_ResolvedInputs other = openpbr_make_default_resolved_inputs();
@@ -203,8 +204,8 @@ TEST(EstablishedApi, StagedPreparationEqualsOneCall)
         other.subsurface_weight = 1.0f;
         OpenPBR_PreparedBsdf staged = openpbr_prepare(other, glm::vec3(0.0f, 1.0f, 0.0f));
         openpbr_prepare_volume(staged, inputs);
-        openpbr_prepare_lobes(staged, inputs, throughput, OpenPBR_BaseRgbWavelengths_nm, OpenPBR_VacuumIor, view);
-        openpbr_prepare_emission(staged, inputs, view);
+        openpbr_prepare_lobes(staged, inputs, throughput, OpenPBR_BaseRgbWavelengths_nm, exterior_ior, view);
+        openpbr_prepare_emission(staged, inputs, exterior_ior, view);
         for (int channel = 0; channel < 3; ++channel)
         {
             ASSERT_EQ(bits(staged.emission[channel]), bits(one_call.emission[channel]));
