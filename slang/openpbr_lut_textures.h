@@ -71,6 +71,80 @@
 // sampler2D[4] (ids 0, 5, 6, 7) and sampler3D[4] (ids 1-4): 0, 0, 1, 2, 3, 1, 2, 3.
 #define OPENPBR_LUT_TEXTURE_SLOT(lut_id) ((lut_id) == 0 ? 0 : ((lut_id) <= 4 ? (lut_id) - 1 : (lut_id) - 4))
 
+// Declarations the library can make itself (OPENPBR_LUT_TEXTURES_DECLARE=1, Slang, GLSL and
+// HLSL; default 0: the host declares its textures and defines the two macros): table id k at
+// binding (HLSL register t) OPENPBR_LUT_TEXTURES_FIRST_BINDING + k of set 0, a combined image
+// sampler (HLSL: a Texture2D/3D<float> and one SamplerState, for glslang's
+// --auto-sampled-textures or DXC's [[vk::combinedImageSampler]]), e.g. for the Slang module,
+// whose macros an importer cannot define: slangc -DOPENPBR_USE_TEXTURE_LUTS=1
+// -DOPENPBR_LUT_TEXTURES_DECLARE=1.
+#ifndef OPENPBR_LUT_TEXTURES_DECLARE
+#define OPENPBR_LUT_TEXTURES_DECLARE 0
+#endif
+// First binding of the declared textures, e.g. 6 (after the conformance kernels' buffers 0-5).
+#ifndef OPENPBR_LUT_TEXTURES_FIRST_BINDING
+#define OPENPBR_LUT_TEXTURES_FIRST_BINDING 6
+#endif
+// Name of the declared texture of a table id (expanded first, then pasted).
+#define OPENPBR_LUT_TEXTURE_NAME_OF(number) openpbr_lut_texture_##number
+#define OPENPBR_LUT_TEXTURE_NAME(lut_id) OPENPBR_LUT_TEXTURE_NAME_OF(lut_id)
+
+#if OPENPBR_USE_TEXTURE_LUTS && OPENPBR_LUT_TEXTURES_DECLARE
+#if defined(OPENPBR_LANGUAGE_TARGET_GLSL)
+#define OPENPBR_LUT_TEXTURE_DECLARE(number, kind) \
+    layout(set = 0, binding = OPENPBR_LUT_TEXTURES_FIRST_BINDING + number) uniform kind openpbr_lut_texture_##number;
+OPENPBR_LUT_TEXTURE_DECLARE(0, sampler2D)
+OPENPBR_LUT_TEXTURE_DECLARE(1, sampler3D)
+OPENPBR_LUT_TEXTURE_DECLARE(2, sampler3D)
+OPENPBR_LUT_TEXTURE_DECLARE(3, sampler3D)
+OPENPBR_LUT_TEXTURE_DECLARE(4, sampler3D)
+OPENPBR_LUT_TEXTURE_DECLARE(5, sampler2D)
+OPENPBR_LUT_TEXTURE_DECLARE(6, sampler2D)
+OPENPBR_LUT_TEXTURE_DECLARE(7, sampler2D)
+#define OPENPBR_SAMPLE_2D_TEXTURE(lut_id, uv) textureLod(OPENPBR_LUT_TEXTURE_NAME(lut_id), uv, 0.0f).x
+#define OPENPBR_SAMPLE_3D_TEXTURE(lut_id, uvw) textureLod(OPENPBR_LUT_TEXTURE_NAME(lut_id), uvw, 0.0f).x
+#elif defined(OPENPBR_LANGUAGE_TARGET_SLANG)
+#define OPENPBR_LUT_TEXTURE_DECLARE(number, kind) \
+    [[vk::binding(OPENPBR_LUT_TEXTURES_FIRST_BINDING + number, 0)]] kind<float> openpbr_lut_texture_##number;
+OPENPBR_LUT_TEXTURE_DECLARE(0, Sampler2D)
+OPENPBR_LUT_TEXTURE_DECLARE(1, Sampler3D)
+OPENPBR_LUT_TEXTURE_DECLARE(2, Sampler3D)
+OPENPBR_LUT_TEXTURE_DECLARE(3, Sampler3D)
+OPENPBR_LUT_TEXTURE_DECLARE(4, Sampler3D)
+OPENPBR_LUT_TEXTURE_DECLARE(5, Sampler2D)
+OPENPBR_LUT_TEXTURE_DECLARE(6, Sampler2D)
+OPENPBR_LUT_TEXTURE_DECLARE(7, Sampler2D)
+#define OPENPBR_SAMPLE_2D_TEXTURE(lut_id, uv) OPENPBR_LUT_TEXTURE_NAME(lut_id).SampleLevel(uv, 0.0f)
+#define OPENPBR_SAMPLE_3D_TEXTURE(lut_id, uvw) OPENPBR_LUT_TEXTURE_NAME(lut_id).SampleLevel(uvw, 0.0f)
+#elif defined(OPENPBR_LANGUAGE_TARGET_HLSL)
+#define OPENPBR_LUT_TEXTURE_DECLARE(number, kind)                                                           \
+    kind<float> openpbr_lut_texture_##number                                                                \
+        : register(OPENPBR_CONCATENATE(t, OPENPBR_LUT_TEXTURES_REGISTER_##number), OPENPBR_CONCATENATE(space, OPENPBR_HLSL_REGISTER_SPACE));
+// Registers t6 ... t13 for the default first binding 6 (HLSL registers are literal tokens).
+#define OPENPBR_LUT_TEXTURES_REGISTER_0 6
+#define OPENPBR_LUT_TEXTURES_REGISTER_1 7
+#define OPENPBR_LUT_TEXTURES_REGISTER_2 8
+#define OPENPBR_LUT_TEXTURES_REGISTER_3 9
+#define OPENPBR_LUT_TEXTURES_REGISTER_4 10
+#define OPENPBR_LUT_TEXTURES_REGISTER_5 11
+#define OPENPBR_LUT_TEXTURES_REGISTER_6 12
+#define OPENPBR_LUT_TEXTURES_REGISTER_7 13
+OPENPBR_LUT_TEXTURE_DECLARE(0, Texture2D)
+OPENPBR_LUT_TEXTURE_DECLARE(1, Texture3D)
+OPENPBR_LUT_TEXTURE_DECLARE(2, Texture3D)
+OPENPBR_LUT_TEXTURE_DECLARE(3, Texture3D)
+OPENPBR_LUT_TEXTURE_DECLARE(4, Texture3D)
+OPENPBR_LUT_TEXTURE_DECLARE(5, Texture2D)
+OPENPBR_LUT_TEXTURE_DECLARE(6, Texture2D)
+OPENPBR_LUT_TEXTURE_DECLARE(7, Texture2D)
+SamplerState openpbr_lut_sampler : register(s0, OPENPBR_CONCATENATE(space, OPENPBR_HLSL_REGISTER_SPACE));
+#define OPENPBR_SAMPLE_2D_TEXTURE(lut_id, uv) OPENPBR_LUT_TEXTURE_NAME(lut_id).SampleLevel(openpbr_lut_sampler, uv, 0.0f)
+#define OPENPBR_SAMPLE_3D_TEXTURE(lut_id, uvw) OPENPBR_LUT_TEXTURE_NAME(lut_id).SampleLevel(openpbr_lut_sampler, uvw, 0.0f)
+#else
+#error "OPENPBR_LUT_TEXTURES_DECLARE=1 is available for Slang, GLSL and HLSL; define the texture macros yourself"
+#endif
+#endif
+
 #if OPENPBR_USE_TEXTURE_LUTS
 #if !defined(OPENPBR_SAMPLE_2D_TEXTURE) || !defined(OPENPBR_SAMPLE_3D_TEXTURE)
 #error "OPENPBR_USE_TEXTURE_LUTS=1: define OPENPBR_SAMPLE_2D_TEXTURE(lut_id, uv) and OPENPBR_SAMPLE_3D_TEXTURE(lut_id, uvw) before including openpbr.h (slang/openpbr_lut_textures.h says how to fill the textures)"

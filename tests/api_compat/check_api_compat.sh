@@ -7,8 +7,8 @@
 #   hlsl   generate_hlsl.mjs: openpbr.hlsl and the program spelled in HLSL; glslang -D
 #   cuda   nvcc -c api_compat.cu with the project's nvcc flags (compile only)
 #   hooks  backend selection and overrides (hooks/hook_language_target.cpp, one compile per
-#          case), the #error without GLM, OPENPBR_USE_CUSTOM_SATURATE in GLSL (compiles with
-#          the hook, fails without it)
+#          case), the #error without GLM, the #error of texture tables without their macros,
+#          OPENPBR_USE_CUSTOM_SATURATE in GLSL (compiles with the hook, fails without it)
 # Environment (set by CMake): OPENPBR_SOURCE_DIR, GLSLANG_VALIDATOR, SPIRV_VAL, NODE,
 # OPENPBR_NVCC, CXX_COMPILER. Exit status 77 = skipped (tool missing).
 set -u
@@ -117,6 +117,13 @@ case "${1:-}" in
       "$HERE/hooks/hook_language_target.cpp"
     run_fails "C++ without <glm/glm.hpp> first: the interop's #error" "include <glm/glm.hpp> before the OpenPBR headers" \
       "$CXX" -std=c++17 -fsyntax-only -I "$SRC" "$HERE/hooks/hook_missing_glm.cpp"
+    run_fails "OPENPBR_USE_TEXTURE_LUTS=1 without the texture macros: the #error" \
+      "define OPENPBR_SAMPLE_2D_TEXTURE(lut_id, uv) and OPENPBR_SAMPLE_3D_TEXTURE" \
+      "$CXX" -std=c++17 -fsyntax-only -I "$SRC" -DOPENPBR_USE_TEXTURE_LUTS=1 "$HERE/hooks/hook_texture_luts_missing.cpp"
+    run_fails "GLSL: OPENPBR_USE_TEXTURE_LUTS=1 without the texture macros: the #error" "OPENPBR_SAMPLE_2D_TEXTURE" \
+      "$GLSLANG" -V --target-env vulkan1.2 -S comp -DOPENPBR_USE_TEXTURE_LUTS=1 -o "$WORK/t.spv" "$HERE/api_compat.comp"
+    run "GLSL: texture tables through the library's declarations compile" "$GLSLANG" -V --target-env vulkan1.2 -S comp \
+      -DOPENPBR_USE_TEXTURE_LUTS=1 -DOPENPBR_LUT_TEXTURES_DECLARE=1 -o "$WORK/t.spv" "$HERE/api_compat.comp"
     run "GLSL host saturate() with OPENPBR_USE_CUSTOM_SATURATE=1 compiles" "$GLSLANG" -V --target-env vulkan1.2 -S comp \
       -DOPENPBR_USE_CUSTOM_SATURATE=1 -o "$WORK/saturate.spv" "$HERE/hooks/hook_custom_saturate.comp"
     run_fails "GLSL host saturate() without the hook collides with the backend's" "function already has a body" \
