@@ -311,7 +311,11 @@ OPENPBR_FUNC vec3 openpbr_selection_channel_weights(vec3 path_throughput)
 {
     const vec3 nonnegative = openpbr_clamp_finite(path_throughput, 0.0f, OPENPBR_FLOAT_MAX);
     const float largest = openpbr_max3(nonnegative);
-    if (!(largest > OPENPBR_FLOAT_MIN_NORMAL))
+    // Grey (white included) is exactly vec3(1) without a division: GPU division is not
+    // correctly rounded (2.5 ulp in Vulkan), and 1 / 1 != 1 there would move every selection
+    // probability by an ulp and the GPU's lobe choices away from the CPU's.
+    const bool grey = nonnegative.x == nonnegative.y && nonnegative.y == nonnegative.z;
+    if (!(largest > OPENPBR_FLOAT_MIN_NORMAL) || grey)
     {
         return vec3(1.0f);
     }
