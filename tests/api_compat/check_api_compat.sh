@@ -5,7 +5,8 @@
 #   slang  slangc.mjs on api_compat.slang (`import openpbr;`) to SPIR-V, GLSL, HLSL, CUDA and
 #          Metal; spirv-val, glslang on the GLSL and the HLSL, check_targets.mjs on the Metal
 #   hlsl   generate_hlsl.mjs: openpbr.hlsl and the program spelled in HLSL; glslang -D
-#   cuda   nvcc -c api_compat.cu with the project's nvcc flags (compile only)
+#   cuda   nvcc -c api_compat.cu with the project's nvcc flags (compile only); nvcc
+#          api_compat_device.cu, run where a CUDA device answers
 #   hooks  backend selection and overrides (hooks/hook_language_target.cpp, one compile per
 #          case), the #error without GLM, the #error of texture tables without their macros,
 #          OPENPBR_USE_CUSTOM_SATURATE in GLSL (compiles with the hook, fails without it)
@@ -92,6 +93,14 @@ case "${1:-}" in
     run "nvcc -c api_compat.cu (-Werror all-warnings, host -Wall -Wextra -Werror)" "$OPENPBR_NVCC" -std=c++17 -O2 -rdc=true \
       -D__NV_NO_VECTOR_DEPRECATION_DIAG -diag-suppress 550,20012 -Werror all-warnings -Xcompiler=-Wall,-Wextra,-Werror \
       -I "$SRC" -c -o "$WORK/api_compat.o" "$HERE/api_compat.cu"
+    run "nvcc api_compat_device.cu (host and device from one source)" "$OPENPBR_NVCC" -std=c++17 -O2 \
+      -D__NV_NO_VECTOR_DEPRECATION_DIAG -diag-suppress 20012 -I "$SRC" -o "$WORK/api_compat_device" "$HERE/api_compat_device.cu"
+    # Run where a device answers (none on the lavapipe machines).
+    if command -v nvidia-smi > /dev/null && nvidia-smi -L > /dev/null 2>&1; then
+      run "api_compat_device on $(nvidia-smi -L | head -1)" "$WORK/api_compat_device"
+    else
+      echo "note: no CUDA device, api_compat_device compiled only"
+    fi
     ;;
   hooks)
     target_case() { # target_case EXPECTED DEFINES...: the router picks EXPECTED
