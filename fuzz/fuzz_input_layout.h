@@ -10,6 +10,7 @@
 #ifndef OPENPBR_FUZZ_INPUT_LAYOUT_H
 #define OPENPBR_FUZZ_INPUT_LAYOUT_H
 
+#include <glm/glm.hpp>  // first: the OpenPBR headers require it (interop/openpbr_interop_cpp.h)
 #include "slang/openpbr_material_packing.h"
 
 #define OPENPBR_FUZZ_MATERIAL_OFFSET 0

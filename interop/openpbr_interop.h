@@ -6,25 +6,59 @@
 // (function qualifiers, parameter passing, specialization constants, table access).
 // Each backend maps that dialect onto its language.
 //
-// Selection (at most one OPENPBR_LANGUAGE_TARGET_* may be set by the user):
+// Selection (at most one OPENPBR_LANGUAGE_TARGET_* may be set by the user; an explicit one
+// overrides the auto-detection, e.g. -DOPENPBR_LANGUAGE_TARGET_GLSL=1 for a C-preprocessed
+// GLSL build, or OPENPBR_LANGUAGE_TARGET_CPP=1 for host code in a .cu file):
 //   OPENPBR_LANGUAGE_TARGET_SLANG=1  chosen explicitly (e.g. by slang/openpbr.slang)
 //   OPENPBR_LANGUAGE_TARGET_HLSL     chosen explicitly or auto-detected from __HLSL_VERSION
 //                                    (DXC); HLSL users take the generated openpbr.hlsl
 //   OPENPBR_LANGUAGE_TARGET_CUDA     auto-detected from __CUDACC__
-//   OPENPBR_LANGUAGE_TARGET_METAL    auto-detected from __METAL_VERSION__
+//   OPENPBR_LANGUAGE_TARGET_MSL      auto-detected from __METAL_VERSION__; the older name
+//                                    OPENPBR_LANGUAGE_TARGET_METAL means the same
 //   OPENPBR_LANGUAGE_TARGET_CPP      auto-detected from __cplusplus
 //   OPENPBR_LANGUAGE_TARGET_GLSL     the fallback (GLSL has no language macro to test)
+//
+// Integration hooks, each defined (to 1) before the first include, default 0:
+//   OPENPBR_USE_CUSTOM_INTEROP=1    the host supplies the whole interop layer: no backend is
+//                                   included, and the host must have defined the macro set
+//                                   checked at the end of this file (and the dialect's names).
+//   OPENPBR_USE_CUSTOM_VEC_TYPES=1  the host provides vec2/vec3/vec4 (C++ and CUDA: also the
+//                                   GLSL math functions the dialect calls, visible from
+//                                   namespace openpbr, e.g. a renderer's own vector library);
+//                                   the C++/CUDA backends then neither include GLM nor use it,
+//                                   Slang/HLSL/Metal define no vector names. GLSL: no effect.
+//   OPENPBR_USE_CUSTOM_SATURATE=1   the host already defines saturate(x) for float and the
+//                                   vector types (C++, CUDA, GLSL, where the backend would
+//                                   otherwise define it); Slang, HLSL and Metal have it built in.
 #ifndef OPENPBR_INTEROP_H
 #define OPENPBR_INTEROP_H
+
+#ifndef OPENPBR_USE_CUSTOM_INTEROP
+#define OPENPBR_USE_CUSTOM_INTEROP 0
+#endif
+#ifndef OPENPBR_USE_CUSTOM_VEC_TYPES
+#define OPENPBR_USE_CUSTOM_VEC_TYPES 0
+#endif
+#ifndef OPENPBR_USE_CUSTOM_SATURATE
+#define OPENPBR_USE_CUSTOM_SATURATE 0
+#endif
 
 #if defined(OPENPBR_LANGUAGE_TARGET_SLANG) && !OPENPBR_LANGUAGE_TARGET_SLANG
 #undef OPENPBR_LANGUAGE_TARGET_SLANG
 #endif
 
-#if (defined(OPENPBR_LANGUAGE_TARGET_SLANG) + defined(OPENPBR_LANGUAGE_TARGET_CUDA) + \
-     defined(OPENPBR_LANGUAGE_TARGET_METAL) + defined(OPENPBR_LANGUAGE_TARGET_CPP) +   \
-     defined(OPENPBR_LANGUAGE_TARGET_GLSL) + defined(OPENPBR_LANGUAGE_TARGET_HLSL)) > 1
+#if (defined(OPENPBR_LANGUAGE_TARGET_SLANG) + defined(OPENPBR_LANGUAGE_TARGET_CUDA) +                                 \
+     (defined(OPENPBR_LANGUAGE_TARGET_METAL) || defined(OPENPBR_LANGUAGE_TARGET_MSL)) +                              \
+     defined(OPENPBR_LANGUAGE_TARGET_CPP) + defined(OPENPBR_LANGUAGE_TARGET_GLSL) + defined(OPENPBR_LANGUAGE_TARGET_HLSL)) > 1
 #error "openpbr_interop.h: more than one OPENPBR_LANGUAGE_TARGET_* is defined; set at most one"
+#endif
+
+// The Metal target has two names; the backends and the BSDF test OPENPBR_LANGUAGE_TARGET_METAL.
+#if defined(OPENPBR_LANGUAGE_TARGET_MSL) && !defined(OPENPBR_LANGUAGE_TARGET_METAL)
+#define OPENPBR_LANGUAGE_TARGET_METAL 1
+#endif
+#if defined(OPENPBR_LANGUAGE_TARGET_METAL) && !defined(OPENPBR_LANGUAGE_TARGET_MSL)
+#define OPENPBR_LANGUAGE_TARGET_MSL 1
 #endif
 
 #if !defined(OPENPBR_LANGUAGE_TARGET_SLANG) && !defined(OPENPBR_LANGUAGE_TARGET_CUDA) && \
@@ -36,6 +70,7 @@
 #define OPENPBR_LANGUAGE_TARGET_CUDA 1
 #elif defined(__METAL_VERSION__)
 #define OPENPBR_LANGUAGE_TARGET_METAL 1
+#define OPENPBR_LANGUAGE_TARGET_MSL 1
 #elif defined(__cplusplus)
 #define OPENPBR_LANGUAGE_TARGET_CPP 1
 #else
@@ -43,7 +78,9 @@
 #endif
 #endif
 
-#if defined(OPENPBR_LANGUAGE_TARGET_SLANG)
+#if OPENPBR_USE_CUSTOM_INTEROP
+// The host's interop layer is already in place (see the macro check below).
+#elif defined(OPENPBR_LANGUAGE_TARGET_SLANG)
 #include "openpbr_interop_slang.h"
 #elif defined(OPENPBR_LANGUAGE_TARGET_CUDA)
 #include "openpbr_interop_cuda.h"
@@ -57,11 +94,21 @@
 #include "openpbr_interop_glsl.h"
 #endif
 
+// Declaration prefix of a program-scope constant, e.g. OPENPBR_GLOBAL_CONSTANT float x = 1.0f;
+// (a custom interop layer may leave it out: plain const then).
+#ifndef OPENPBR_GLOBAL_CONSTANT
+#define OPENPBR_GLOBAL_CONSTANT const
+#endif
+
 // Every backend must provide these; checked here so a new backend fails loudly.
 #if !defined(OPENPBR_FUNC) || !defined(OPENPBR_IN) || !defined(OPENPBR_INOUT) || \
     !defined(OPENPBR_OUT) || !defined(OPENPBR_UNUSED) || !defined(OPENPBR_NAMESPACE_BEGIN) || !defined(OPENPBR_NAMESPACE_END) || \
     !defined(OPENPBR_DECLARE_SPECIALIZATION_CONSTANT) || !defined(OPENPBR_GET_SPECIALIZATION_CONSTANT)
+#if OPENPBR_USE_CUSTOM_INTEROP
+#error "openpbr_interop.h: OPENPBR_USE_CUSTOM_INTEROP=1 but the host's interop layer lacks one of OPENPBR_FUNC, OPENPBR_IN, OPENPBR_INOUT, OPENPBR_OUT, OPENPBR_UNUSED, OPENPBR_NAMESPACE_BEGIN/END, OPENPBR_DECLARE/GET_SPECIALIZATION_CONSTANT"
+#else
 #error "openpbr_interop.h: the selected backend does not define the full macro set"
+#endif
 #endif
 
 #endif

@@ -5,7 +5,20 @@
 
 #include <cmath>
 #include <cstdint>
+
+// GLM is the C++ vector library unless the host brings its own (OPENPBR_USE_CUSTOM_VEC_TYPES).
+// The host includes <glm/glm.hpp> first (as for any GLM-based header library; slang/openpbr.h,
+// the project's entry header, does it for its includers); every GLM header defines
+// GLM_VERSION, which is what can be tested here.
+#if !(defined(OPENPBR_USE_CUSTOM_VEC_TYPES) && OPENPBR_USE_CUSTOM_VEC_TYPES)
+#if !defined(GLM_VERSION)
+#error "OpenPBR (C++): include <glm/glm.hpp> before the OpenPBR headers, or include slang/openpbr.h (which includes it), or define OPENPBR_USE_CUSTOM_VEC_TYPES=1 and provide vec2/vec3/vec4 and their math functions"
+#endif
 #include <glm/glm.hpp>
+#define OPENPBR_CPP_USE_VECTOR_LIBRARY using namespace glm;
+#else
+#define OPENPBR_CPP_USE_VECTOR_LIBRARY
+#endif
 
 // A build of the BSDF with other compile-time feature toggles (e.g. -DOPENPBR_FEATURE_COAT=0)
 // in a program that also has the default build needs its own namespace, or the two sets of
@@ -16,15 +29,15 @@
 #define OPENPBR_NAMESPACE_BEGIN                    \
     namespace openpbr {                            \
     namespace OPENPBR_CPP_VARIANT_NAMESPACE {      \
-    using namespace glm;                           \
+    OPENPBR_CPP_USE_VECTOR_LIBRARY                 \
     typedef unsigned int uint;
 #define OPENPBR_NAMESPACE_END \
     }                         \
     }
 #else
 #define OPENPBR_NAMESPACE_BEGIN \
-    namespace openpbr {         \
-    using namespace glm;        \
+    namespace openpbr {            \
+    OPENPBR_CPP_USE_VECTOR_LIBRARY \
     typedef unsigned int uint;
 #define OPENPBR_NAMESPACE_END }
 #endif
@@ -51,9 +64,23 @@ inline std::uint32_t openpbr_runtime_feature_mask = 0xffffffffu;
 #define OPENPBR_UNUSED(name) (void)(name)
 #define OPENPBR_OUT(type) type&
 
+// Program-scope constants (e.g. OpenPBR_VacuumIor): one definition across translation units.
+#define OPENPBR_GLOBAL_CONSTANT inline const
+
 OPENPBR_NAMESPACE_BEGIN
 // GLSL has atan(y, x); the dialect spells it atan2 so Slang/HLSL/Metal need no wrapper.
 inline float atan2(float y, float x) { return std::atan2(y, x); }
+#if !(defined(OPENPBR_USE_CUSTOM_SATURATE) && OPENPBR_USE_CUSTOM_SATURATE) && !(defined(OPENPBR_USE_CUSTOM_VEC_TYPES) && OPENPBR_USE_CUSTOM_VEC_TYPES)
+// HLSL's saturate, which the dialect uses; a host that has its own (visible from namespace
+// openpbr) sets OPENPBR_USE_CUSTOM_SATURATE=1. With custom vector types the host's library
+// provides it alongside the other math functions.
+inline float saturate(float x) { return glm::clamp(x, 0.0f, 1.0f); }
+template <glm::length_t L, glm::qualifier Q>
+inline glm::vec<L, float, Q> saturate(const glm::vec<L, float, Q>& v)
+{
+    return glm::clamp(v, glm::vec<L, float, Q>(0.0f), glm::vec<L, float, Q>(1.0f));
+}
+#endif
 OPENPBR_NAMESPACE_END
 
 #endif

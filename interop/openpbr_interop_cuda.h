@@ -4,11 +4,20 @@
 #define OPENPBR_INTEROP_CUDA_H
 
 #include <cuda_runtime.h>
+#if !(defined(OPENPBR_USE_CUSTOM_VEC_TYPES) && OPENPBR_USE_CUSTOM_VEC_TYPES)
+// As in C++ (openpbr_interop_cpp.h): the host includes <glm/glm.hpp> first.
+#if !defined(GLM_VERSION)
+#error "OpenPBR (CUDA): include <glm/glm.hpp> before the OpenPBR headers, or define OPENPBR_USE_CUSTOM_VEC_TYPES=1 and provide vec2/vec3/vec4 and their math functions"
+#endif
 #include <glm/glm.hpp>
+#define OPENPBR_CUDA_USE_VECTOR_LIBRARY using namespace glm;
+#else
+#define OPENPBR_CUDA_USE_VECTOR_LIBRARY
+#endif
 
-#define OPENPBR_NAMESPACE_BEGIN \
-    namespace openpbr {         \
-    using namespace glm;        \
+#define OPENPBR_NAMESPACE_BEGIN         \
+    namespace openpbr {                 \
+    OPENPBR_CUDA_USE_VECTOR_LIBRARY     \
     typedef unsigned int uint;
 #define OPENPBR_NAMESPACE_END }
 
@@ -25,8 +34,21 @@
 #define OPENPBR_DECLARE_SPECIALIZATION_CONSTANT(name)
 #define OPENPBR_GET_SPECIALIZATION_CONSTANT(name) true
 
+// Program-scope constants (e.g. OpenPBR_VacuumIor) live in device memory, initialized at
+// compile time: device code reads them; host code uses the C++ build's copies.
+#define OPENPBR_GLOBAL_CONSTANT __device__ const
+
 namespace openpbr {
 __host__ __device__ inline float atan2(float y, float x) { return ::atan2f(y, x); }
+#if !(defined(OPENPBR_USE_CUSTOM_SATURATE) && OPENPBR_USE_CUSTOM_SATURATE) && !(defined(OPENPBR_USE_CUSTOM_VEC_TYPES) && OPENPBR_USE_CUSTOM_VEC_TYPES)
+// HLSL's saturate, which the dialect uses; OPENPBR_USE_CUSTOM_SATURATE=1 when the host has one.
+__host__ __device__ inline float saturate(float x) { return glm::clamp(x, 0.0f, 1.0f); }
+template <glm::length_t L, glm::qualifier Q>
+__host__ __device__ inline glm::vec<L, float, Q> saturate(const glm::vec<L, float, Q>& v)
+{
+    return glm::clamp(v, glm::vec<L, float, Q>(0.0f), glm::vec<L, float, Q>(1.0f));
+}
+#endif
 }  // namespace openpbr
 
 #endif

@@ -19,6 +19,18 @@
     layout(constant_id = OPENPBR_SPECIALIZATION_ID_##name) const bool name = true;
 #define OPENPBR_GET_SPECIALIZATION_CONSTANT(name) name
 
+// Program-scope constants, e.g. OpenPBR_VacuumIor.
+#define OPENPBR_GLOBAL_CONSTANT const
+
 float atan2(float y, float x) { return atan(y, x); }
+
+// HLSL's saturate, which the dialect uses; a shader that defines its own sets
+// OPENPBR_USE_CUSTOM_SATURATE=1 (GLSL rejects a second definition of the same overload).
+#if !(defined(OPENPBR_USE_CUSTOM_SATURATE) && OPENPBR_USE_CUSTOM_SATURATE)
+float saturate(float x) { return clamp(x, 0.0f, 1.0f); }
+vec2 saturate(vec2 x) { return clamp(x, vec2(0.0f), vec2(1.0f)); }
+vec3 saturate(vec3 x) { return clamp(x, vec3(0.0f), vec3(1.0f)); }
+vec4 saturate(vec4 x) { return clamp(x, vec4(0.0f), vec4(1.0f)); }
+#endif
 
 #endif

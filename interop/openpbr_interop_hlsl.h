@@ -13,9 +13,12 @@
 #ifndef OPENPBR_INTEROP_HLSL_H
 #define OPENPBR_INTEROP_HLSL_H
 
+// OPENPBR_USE_CUSTOM_VEC_TYPES=1: the host spells vec2/vec3/vec4 itself (e.g. typedefs).
+#if !(defined(OPENPBR_USE_CUSTOM_VEC_TYPES) && OPENPBR_USE_CUSTOM_VEC_TYPES)
 #define vec2 float2
 #define vec3 float3
 #define vec4 float4
+#endif
 #define mix lerp
 #define fract frac
 #define inversesqrt rsqrt
@@ -29,6 +32,9 @@
 #ifndef OPENPBR_HLSL_REGISTER_SPACE
 #define OPENPBR_HLSL_REGISTER_SPACE 0
 #endif
+
+// Program-scope constants, e.g. OpenPBR_VacuumIor (saturate is built in).
+#define OPENPBR_GLOBAL_CONSTANT static const
 
 #define OPENPBR_NAMESPACE_BEGIN
 #define OPENPBR_NAMESPACE_END

@@ -4,13 +4,22 @@
 
 #include <metal_stdlib>
 
+// OPENPBR_USE_CUSTOM_VEC_TYPES=1: the host provides vec2/vec3/vec4 (saturate is built in).
+#if defined(OPENPBR_USE_CUSTOM_VEC_TYPES) && OPENPBR_USE_CUSTOM_VEC_TYPES
+#define OPENPBR_METAL_VECTOR_NAMES
+#else
+#define OPENPBR_METAL_VECTOR_NAMES \
+    typedef float2 vec2;           \
+    typedef float3 vec3;           \
+    typedef float4 vec4;
+#endif
 #define OPENPBR_NAMESPACE_BEGIN \
     namespace openpbr {         \
     using namespace metal;      \
-    typedef float2 vec2;        \
-    typedef float3 vec3;        \
-    typedef float4 vec4;
+    OPENPBR_METAL_VECTOR_NAMES
 #define OPENPBR_NAMESPACE_END }
+// Program-scope constants (e.g. OpenPBR_VacuumIor) in the constant address space.
+#define OPENPBR_GLOBAL_CONSTANT constant
 #define inversesqrt rsqrt
 
 #define OPENPBR_FUNC inline

@@ -4,9 +4,12 @@
 #ifndef OPENPBR_INTEROP_SLANG_H
 #define OPENPBR_INTEROP_SLANG_H
 
+// OPENPBR_USE_CUSTOM_VEC_TYPES=1: the host spells vec2/vec3/vec4 itself (e.g. typedefs).
+#if !(defined(OPENPBR_USE_CUSTOM_VEC_TYPES) && OPENPBR_USE_CUSTOM_VEC_TYPES)
 #define vec2 float2
 #define vec3 float3
 #define vec4 float4
+#endif
 #define mix lerp
 #define fract frac
 #define inversesqrt rsqrt
@@ -15,6 +18,9 @@
 // HLSL register named after a binding macro.
 #define OPENPBR_CONCATENATE_TOKENS(a, b) a##b
 #define OPENPBR_CONCATENATE(a, b) OPENPBR_CONCATENATE_TOKENS(a, b)
+
+// Program-scope constants, e.g. OpenPBR_VacuumIor (saturate is built in).
+#define OPENPBR_GLOBAL_CONSTANT static const
 
 #define OPENPBR_NAMESPACE_BEGIN
 #define OPENPBR_NAMESPACE_END

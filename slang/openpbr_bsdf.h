@@ -50,6 +50,13 @@ struct OpenPBR_BsdfSample
 // wavelengths of the Rec.709 primaries, e.g. for dispersion in an RGB renderer.
 #define OPENPBR_DEFAULT_RGB_WAVELENGTHS_NM vec3(612.0f, 549.0f, 465.0f)
 
+// The same as a function, for callers that see the library through a module (Slang `import
+// openpbr;` exports declarations, not macros), e.g. to pass an exterior IOR to openpbr_prepare.
+OPENPBR_FUNC vec3 openpbr_default_rgb_wavelengths_nm()
+{
+    return OPENPBR_DEFAULT_RGB_WAVELENGTHS_NM;
+}
+
 struct OpenPBR_PreparedBsdf
 {
     OpenPBR_Basis basis;       // base shading frame, view side up (flipped for back faces)
@@ -285,12 +292,54 @@ OPENPBR_FUNC float openpbr_kept_probability(float probability, float cut)
     return probability >= cut ? probability : 0.0f;
 }
 
+// Channel weights that steer lobe selection towards what a lobe adds to the current path: the
+// path throughput divided by its largest channel, each channel floored at
+// OPENPBR_SELECTION_CHANNEL_FLOOR. Selection probabilities are then proportional to
+// luminance(throughput x lobe albedo) (the luminance of the lobe's contribution to this path),
+// which lowers variance where the path carries mostly one color (e.g. after a red glass).
+// Any positive choice keeps every estimator unbiased (sample weights divide by the probability
+// actually used, and pdf reports the same mixture); the floor keeps every lobe the unweighted
+// selection would sample selectable, so a lobe whose albedo estimate misses a channel of its
+// value still covers it. NaN or negative channels count as 0, +inf as the largest float; an
+// all-zero throughput (or the project-form prepare, which passes white) weighs nothing:
+// exactly vec3(1).
+// Floor of a channel weight, e.g. 1e-3: a lobe seen only through a channel with 1/1000 of the
+// largest throughput keeps 1/1000 of its unweighted share.
+#define OPENPBR_SELECTION_CHANNEL_FLOOR 1e-3f
+
+OPENPBR_FUNC vec3 openpbr_selection_channel_weights(vec3 path_throughput)
+{
+    const vec3 nonnegative = openpbr_clamp_finite(path_throughput, 0.0f, OPENPBR_FLOAT_MAX);
+    const float largest = openpbr_max3(nonnegative);
+    // Grey (white included) is exactly vec3(1) without a division: GPU division is not
+    // correctly rounded (2.5 ulp in Vulkan), and 1 / 1 != 1 there would move every selection
+    // probability by an ulp and the GPU's lobe choices away from the CPU's.
+    const bool grey = nonnegative.x == nonnegative.y && nonnegative.y == nonnegative.z;
+    if (!(largest > OPENPBR_FLOAT_MIN_NORMAL) || grey)
+    {
+        return vec3(1.0f);
+    }
+    return max(nonnegative / largest, vec3(OPENPBR_SELECTION_CHANNEL_FLOOR));
+}
+
+// The luminance of a white lobe's weight under the channel weights: exactly 1 for white weights
+// (so the project-form prepare keeps its probabilities bit for bit), the luminance otherwise.
+OPENPBR_FUNC float openpbr_selection_white_scale(vec3 channel_weights)
+{
+    const bool white = channel_weights.x == channel_weights.y && channel_weights.y == channel_weights.z;
+    return white ? channel_weights.x : openpbr_luminance(channel_weights);
+}
+
 // Every lobe below is set up only where its weight is above zero (issue "a lobe whose weight is
 // zero costs nothing"): the others keep the empty lobe and selection probability 0, which eval,
 // pdf and sample never look at. With a feature toggled off its weight is the constant 0, so the
 // compiler removes the set-up altogether. `inputs` have passed openpbr_prepare_inputs.
+// exterior_ior: the absolute IOR of the medium the view is in (README "Exterior medium"),
+// already passed through openpbr_contract_exterior_ior. `path_throughput` only steers lobe
+// selection (openpbr_selection_channel_weights); white gives the unweighted probabilities.
 OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare_lobes_of(OPENPBR_IN(OpenPBR_ResolvedInputs) inputs, vec3 view_world,
-                                                           vec3 rgb_wavelengths_nm)
+                                                           vec3 rgb_wavelengths_nm, float exterior_ior,
+                                                           vec3 path_throughput)
 {
     OpenPBR_PreparedBsdf bsdf;
     bsdf.view_world = openpbr_safe_normalize(view_world, inputs.geometry_basis.normal);
@@ -333,10 +382,14 @@ OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare_lobes_of(OPENPBR_IN(OpenPBR_Re
     bsdf.pass_through_weight = vec3(1.0f - opacity);
 
     // ---- IORs (spec "Base Substrate", "Coat" total internal reflection fix) ----
-    const float coat_ior = inputs.coat_ior;
-    const float base_ior = inputs.specular_ior;
-    const float base_over_coat = coat_ior > base_ior ? coat_ior / base_ior : base_ior / coat_ior;
-    const float eta_base = openpbr_modulated_ior(coat_weight > 0.0f ? mix(base_ior, base_over_coat, coat_weight) : base_ior,
+    // Every interface sees a relative IOR: the coat against the exterior medium, the base
+    // against the exterior (uncoated) or the coat (spec "Coat": the base's relative IOR under
+    // the coat, inverted where the coat is the denser medium), blended by coat_weight.
+    const float coat_eta = openpbr_relative_ior(inputs.coat_ior, exterior_ior);
+    const float base_eta = openpbr_relative_ior(inputs.specular_ior, exterior_ior);
+    const float base_over_coat = inputs.coat_ior > inputs.specular_ior ? inputs.coat_ior / inputs.specular_ior
+                                                                       : inputs.specular_ior / inputs.coat_ior;
+    const float eta_base = openpbr_modulated_ior(coat_weight > 0.0f ? mix(base_eta, base_over_coat, coat_weight) : base_eta,
                                                  inputs.specular_weight);
     const vec3 eta_channels = openpbr_dispersive_ior(eta_base, inputs.transmission_dispersion_abbe_number,
                                                      thin_walled ? 0.0f : inputs.transmission_dispersion_scale,
@@ -367,7 +420,7 @@ OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare_lobes_of(OPENPBR_IN(OpenPBR_Re
     bsdf.under_coat_absorbing = vec3(0.0f);
     bsdf.coat_half_log_color = vec3(0.0f);
     bsdf.coat_absorbs = false;
-    bsdf.coat_inverse_eta_squared = 1.0f / (coat_ior * coat_ior);
+    bsdf.coat_inverse_eta_squared = 1.0f / (coat_eta * coat_eta);
     bsdf.under_coat_transmitted = vec3(1.0f);
     const vec3 zero = vec3(0.0f);
     const OpenPBR_Fresnel no_fresnel = openpbr_make_constant_fresnel(vec3(1.0f));
@@ -422,14 +475,14 @@ OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare_lobes_of(OPENPBR_IN(OpenPBR_Re
         const vec2 coat_alpha = openpbr_ggx_alpha(coat_roughness, inputs.coat_roughness_anisotropy);
         const OpenPBR_GgxLobeAlbedo coat_lobe_albedo =
             openpbr_ggx_lobe_albedo(coat_roughness, inputs.coat_roughness_anisotropy, coat_alpha, bsdf.coat_view);
-        const OpenPBR_Fresnel coat_fresnel = openpbr_make_dielectric_fresnel(coat_ior, vec3(1.0f));
+        const OpenPBR_Fresnel coat_fresnel = openpbr_make_dielectric_fresnel(coat_eta, vec3(1.0f));
         const vec3 coat_compensation =
-            openpbr_multiple_scattering_compensation(vec3(openpbr_dielectric_f0(coat_ior)), coat_lobe_albedo.albedo);
+            openpbr_multiple_scattering_compensation(vec3(openpbr_dielectric_f0(coat_eta)), coat_lobe_albedo.albedo);
         bsdf.coat = openpbr_microfacet_reflection_lobe_init(coat_compensation * (under_fuzz * coat_weight), coat_alpha,
                                                             coat_fresnel, OPENPBR_LOBE_ID_COAT, 1.0f, bsdf.coat_view);
         const float coat_single_albedo =
-            bsdf.coat.is_delta ? openpbr_fresnel_dielectric(coat_mu, coat_ior)
-                               : openpbr_dielectric_reflection_albedo(coat_mu, coat_lobe_albedo.reflection_alpha, coat_ior) *
+            bsdf.coat.is_delta ? openpbr_fresnel_dielectric(coat_mu, coat_eta)
+                               : openpbr_dielectric_reflection_albedo(coat_mu, coat_lobe_albedo.reflection_alpha, coat_eta) *
                                      coat_lobe_albedo.reflection_scale;
         coat_albedo = min(coat_single_albedo * coat_compensation.x, 1.0f);
         bsdf.coat_absorbs = !(inputs.coat_color.x == 1.0f && inputs.coat_color.y == 1.0f && inputs.coat_color.z == 1.0f);
@@ -445,9 +498,10 @@ OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare_lobes_of(OPENPBR_IN(OpenPBR_Re
     // Dielectric specular reflection, tinted by specular_color (reflection from above only).
     // Thin film on the base (spec "Thin-film iridescence"): over the metal and the dielectric,
     // under the coat; the medium above it is the coat where there is one (IOR blended by
-    // coat_weight, the spec's "depending on coat coverage").
+    // coat_weight, the spec's "depending on coat coverage"), otherwise the exterior medium.
+    // Absolute IORs: the film's Fresnel model reads n_outside, n_film and n_base themselves.
     const float film_weight = inputs.thin_film_weight;
-    const float film_outside_ior = coat_weight > 0.0f ? mix(1.0f, coat_ior, coat_weight) : 1.0f;
+    const float film_outside_ior = coat_weight > 0.0f ? mix(exterior_ior, inputs.coat_ior, coat_weight) : exterior_ior;
     const float dielectric_weight = 1.0f - metalness;
     vec3 specular_albedo = vec3(0.0f);
     if (dielectric_weight > 0.0f)
@@ -574,8 +628,8 @@ OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare_lobes_of(OPENPBR_IN(OpenPBR_Re
         const vec3 base_albedo =
             openpbr_saturate(specular_estimate + diffuse_estimate + metal_albedo + diffuse_transmission_estimate +
                              transmission_estimate + thin_transmission_estimate);
-        const float k_specular = openpbr_fresnel_dielectric(coat_mu, coat_ior);
-        const float k_rough = 1.0f - (1.0f - openpbr_average_fresnel(coat_ior)) * bsdf.coat_inverse_eta_squared;
+        const float k_specular = openpbr_fresnel_dielectric(coat_mu, coat_eta);
+        const float k_rough = 1.0f - (1.0f - openpbr_average_fresnel(coat_eta)) * bsdf.coat_inverse_eta_squared;
         const float specular_f0 = openpbr_dielectric_f0(eta_base);
         const float base_surface_roughness =
             mix(mix(1.0f, inputs.specular_roughness, min(specular_f0 * inputs.specular_weight, 1.0f)), inputs.specular_roughness,
@@ -592,17 +646,22 @@ OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare_lobes_of(OPENPBR_IN(OpenPBR_Re
     // Estimate for selection: the light-side transmittance taken equal to the view side's.
     const vec3 under_reflected = bsdf.under_coat_constant + bsdf.under_coat_absorbing * coat_view_transmittance;
 
-    // Selection probability proportional to each lobe's estimated albedo (luminance); the
-    // probabilities only steer sampling, so estimates need not be exact.
-    const float fuzz_p = fuzz_weight > 0.0f ? openpbr_luminance(openpbr_fuzz_lobe_albedo(bsdf.fuzz, bsdf.fuzz_view)) : 0.0f;
-    const float coat_p = coat_weight > 0.0f ? under_fuzz * coat_weight * coat_albedo : 0.0f;
-    const float specular_p = dielectric_weight > 0.0f ? openpbr_luminance(specular_estimate * under_reflected) : 0.0f;
-    const float metal_p = metalness > 0.0f ? openpbr_luminance(metal_albedo * under_reflected) : 0.0f;
-    const float diffuse_p = openpbr_luminance(diffuse_estimate * under_reflected);
-    const float diffuse_transmission_p = openpbr_luminance(diffuse_transmission_estimate * bsdf.under_coat_transmitted);
-    const float transmission_p = openpbr_luminance(transmission_estimate * bsdf.under_coat_transmitted);
-    const float thin_transmission_p = openpbr_luminance(thin_transmission_estimate * bsdf.under_coat_transmitted);
-    const float pass_through_p = 1.0f - opacity;
+    // Selection probability proportional to each lobe's estimated albedo (luminance), weighted
+    // by the path's channel weights; the probabilities only steer sampling, so estimates need
+    // not be exact.
+    const vec3 channel = openpbr_selection_channel_weights(path_throughput);
+    const float white = openpbr_selection_white_scale(channel);
+    const float fuzz_p =
+        fuzz_weight > 0.0f ? openpbr_luminance(openpbr_fuzz_lobe_albedo(bsdf.fuzz, bsdf.fuzz_view) * channel) : 0.0f;
+    const float coat_p = coat_weight > 0.0f ? under_fuzz * coat_weight * coat_albedo * white : 0.0f;
+    const float specular_p = dielectric_weight > 0.0f ? openpbr_luminance(specular_estimate * under_reflected * channel) : 0.0f;
+    const float metal_p = metalness > 0.0f ? openpbr_luminance(metal_albedo * under_reflected * channel) : 0.0f;
+    const float diffuse_p = openpbr_luminance(diffuse_estimate * under_reflected * channel);
+    const float diffuse_transmission_p =
+        openpbr_luminance(diffuse_transmission_estimate * bsdf.under_coat_transmitted * channel);
+    const float transmission_p = openpbr_luminance(transmission_estimate * bsdf.under_coat_transmitted * channel);
+    const float thin_transmission_p = openpbr_luminance(thin_transmission_estimate * bsdf.under_coat_transmitted * channel);
+    const float pass_through_p = (1.0f - opacity) * white;
     const float raw_total = fuzz_p + coat_p + specular_p + metal_p + diffuse_p + diffuse_transmission_p + transmission_p +
                             thin_transmission_p + pass_through_p;
     // Negligible lobes are dropped: probability 0, so eval, pdf and sample skip them alike.
@@ -637,7 +696,8 @@ OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare_lobes_of(OPENPBR_IN(OpenPBR_Re
 // lerp(1, T_coat, C) with T_coat one pass through the coat towards the view; zero when seen
 // from inside a non-thin-walled object (the emitting surface faces outwards).
 // `inputs` have passed openpbr_prepare_inputs.
-OPENPBR_FUNC vec3 openpbr_prepare_emission_of(OPENPBR_IN(OpenPBR_ResolvedInputs) inputs, vec3 view_world)
+OPENPBR_FUNC vec3 openpbr_prepare_emission_of(OPENPBR_IN(OpenPBR_ResolvedInputs) inputs, vec3 view_world,
+                                              float exterior_ior)
 {
     if (!(inputs.emission_luminance > 0.0f))
     {
@@ -654,22 +714,37 @@ OPENPBR_FUNC vec3 openpbr_prepare_emission_of(OPENPBR_IN(OpenPBR_ResolvedInputs)
     {
         const float coat_mu = min(abs(dot(view, inputs.geometry_coat_basis.normal)), 1.0f);
         const vec3 half_log_color = 0.5f * log(max(inputs.coat_color, vec3(1e-6f)));
-        const vec3 coat_transmittance =
-            openpbr_coat_transmittance(half_log_color, 1.0f / (inputs.coat_ior * inputs.coat_ior), coat_mu);
+        const float coat_eta = openpbr_relative_ior(inputs.coat_ior, exterior_ior);
+        const vec3 coat_transmittance = openpbr_coat_transmittance(half_log_color, 1.0f / (coat_eta * coat_eta), coat_mu);
         attenuation = mix(vec3(1.0f), coat_transmittance, inputs.coat_weight);
     }
     return inputs.emission_color * inputs.emission_luminance * attenuation * inputs.geometry_opacity;
 }
 
+// Staged and full forms. exterior_ior (default 1, air) is the absolute IOR of the medium the
+// view is in, e.g. 1.33 for an object under water; the shorter forms pass 1.
+OPENPBR_FUNC vec3 openpbr_prepare_emission(OPENPBR_IN(OpenPBR_ResolvedInputs) raw_inputs, vec3 view_world, float exterior_ior)
+{
+    return openpbr_prepare_emission_of(openpbr_prepare_inputs(raw_inputs), view_world,
+                                       openpbr_contract_exterior_ior(exterior_ior));
+}
+
 OPENPBR_FUNC vec3 openpbr_prepare_emission(OPENPBR_IN(OpenPBR_ResolvedInputs) raw_inputs, vec3 view_world)
 {
-    return openpbr_prepare_emission_of(openpbr_prepare_inputs(raw_inputs), view_world);
+    return openpbr_prepare_emission(raw_inputs, view_world, 1.0f);
+}
+
+OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare_lobes(OPENPBR_IN(OpenPBR_ResolvedInputs) raw_inputs, vec3 view_world,
+                                                        vec3 rgb_wavelengths_nm, float exterior_ior)
+{
+    return openpbr_prepare_lobes_of(openpbr_prepare_inputs(raw_inputs), view_world, rgb_wavelengths_nm,
+                                    openpbr_contract_exterior_ior(exterior_ior), vec3(1.0f));
 }
 
 OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare_lobes(OPENPBR_IN(OpenPBR_ResolvedInputs) raw_inputs, vec3 view_world,
                                                         vec3 rgb_wavelengths_nm)
 {
-    return openpbr_prepare_lobes_of(openpbr_prepare_inputs(raw_inputs), view_world, rgb_wavelengths_nm);
+    return openpbr_prepare_lobes(raw_inputs, view_world, rgb_wavelengths_nm, 1.0f);
 }
 
 OPENPBR_FUNC OpenPBR_HomogeneousVolume openpbr_prepare_volume(OPENPBR_IN(OpenPBR_ResolvedInputs) raw_inputs)
@@ -677,19 +752,37 @@ OPENPBR_FUNC OpenPBR_HomogeneousVolume openpbr_prepare_volume(OPENPBR_IN(OpenPBR
     return openpbr_make_volume(openpbr_prepare_inputs(raw_inputs));
 }
 
-OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare(OPENPBR_IN(OpenPBR_ResolvedInputs) inputs, vec3 view_world,
-                                                  vec3 rgb_wavelengths_nm)
+// The whole preparation with lobe selection steered by the path's throughput (see
+// openpbr_selection_channel_weights; results stay unbiased): what the established-API
+// openpbr_prepare(inputs, path_throughput, ...) runs. vec3(1.0f) is openpbr_prepare.
+OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare_for_path(OPENPBR_IN(OpenPBR_ResolvedInputs) inputs, vec3 view_world,
+                                                           vec3 rgb_wavelengths_nm, float exterior_ior,
+                                                           vec3 path_throughput)
 {
     // The input contract and the toggles run once, for the lobes and the emission.
     const OpenPBR_ResolvedInputs prepared_inputs = openpbr_prepare_inputs(inputs);
-    OpenPBR_PreparedBsdf bsdf = openpbr_prepare_lobes_of(prepared_inputs, view_world, rgb_wavelengths_nm);
-    bsdf.emission = openpbr_prepare_emission_of(prepared_inputs, view_world);
+    const float exterior = openpbr_contract_exterior_ior(exterior_ior);
+    OpenPBR_PreparedBsdf bsdf =
+        openpbr_prepare_lobes_of(prepared_inputs, view_world, rgb_wavelengths_nm, exterior, path_throughput);
+    bsdf.emission = openpbr_prepare_emission_of(prepared_inputs, view_world, exterior);
     return bsdf;
+}
+
+OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare(OPENPBR_IN(OpenPBR_ResolvedInputs) inputs, vec3 view_world,
+                                                  vec3 rgb_wavelengths_nm, float exterior_ior)
+{
+    return openpbr_prepare_for_path(inputs, view_world, rgb_wavelengths_nm, exterior_ior, vec3(1.0f));
+}
+
+OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare(OPENPBR_IN(OpenPBR_ResolvedInputs) inputs, vec3 view_world,
+                                                  vec3 rgb_wavelengths_nm)
+{
+    return openpbr_prepare(inputs, view_world, rgb_wavelengths_nm, 1.0f);
 }
 
 OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare(OPENPBR_IN(OpenPBR_ResolvedInputs) inputs, vec3 view_world)
 {
-    return openpbr_prepare(inputs, view_world, OPENPBR_DEFAULT_RGB_WAVELENGTHS_NM);
+    return openpbr_prepare(inputs, view_world, OPENPBR_DEFAULT_RGB_WAVELENGTHS_NM, 1.0f);
 }
 
 // Sum of the continuous lobes at one world-space light direction, split diffuse / specular.

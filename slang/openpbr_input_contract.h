@@ -88,6 +88,22 @@ OPENPBR_FUNC OpenPBR_ResolvedInputs openpbr_apply_input_contract(OPENPBR_IN(Open
 #undef OPENPBR_CONTRACT_BOOL
 #undef OPENPBR_CONTRACT_BASIS
 
+// The absolute IOR of the medium the surface sits in (openpbr_prepare's exterior_ior), e.g. 1
+// for air, 1.33 for water: NaN becomes 1, the rest is clamped to the IOR range. Every interface
+// then works with a relative IOR (material IOR / exterior IOR), itself clamped to
+// [OPENPBR_IOR_MIN, OPENPBR_IOR_MAX] (openpbr_relative_ior).
+OPENPBR_FUNC float openpbr_contract_exterior_ior(float exterior_ior)
+{
+    return openpbr_contract_float(exterior_ior, OPENPBR_IOR_MIN, OPENPBR_IOR_MAX, 1.0f);
+}
+
+// n_inside / n_outside, clamped to the range the compensation tables cover: e.g. 1.5 / 1.33 =
+// 1.128, 1.33 / 1.5 = 0.887, 3 / (1/3) = 9 becomes 3.
+OPENPBR_FUNC float openpbr_relative_ior(float inside_ior, float outside_ior)
+{
+    return clamp(inside_ior / outside_ior, OPENPBR_IOR_MIN, OPENPBR_IOR_MAX);
+}
+
 OPENPBR_NAMESPACE_END
 
 #endif

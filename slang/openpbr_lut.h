@@ -106,6 +106,9 @@
 #define OPENPBR_LUT_16BIT 0
 #endif
 
+// Texture tables (OPENPBR_USE_TEXTURE_LUTS=1): ids, fill instructions and the host's macros.
+#include "openpbr_lut_textures.h"
+
 #if !defined(OPENPBR_LUT_MODE_ARRAY) && !defined(OPENPBR_LUT_MODE_BUFFER) && !defined(OPENPBR_LUT_MODE_TEXTURE)
 #if defined(OPENPBR_LANGUAGE_TARGET_SLANG) || defined(OPENPBR_LANGUAGE_TARGET_GLSL) || defined(OPENPBR_LANGUAGE_TARGET_HLSL)
 #define OPENPBR_LUT_MODE_BUFFER 1
@@ -159,7 +162,9 @@ inline constexpr float openpbr_lut_data[OPENPBR_LUT_TOTAL_COUNT] = {
 #include "generated/openpbr_lut_values.inc"
 };
 }
-#define OPENPBR_LUT_FETCH(index) openpbr_lut_data[index]
+// Qualified: a host interop layer (OPENPBR_USE_CUSTOM_INTEROP) may put the BSDF in another
+// namespace; the shared table stays in openpbr.
+#define OPENPBR_LUT_FETCH(index) ::openpbr::openpbr_lut_data[index]
 #endif
 #elif defined(OPENPBR_LUT_MODE_BUFFER) && OPENPBR_LUT_16BIT
 // 16-bit table values (OPENPBR_LUT_16BIT): IEEE halves, two per 32-bit word, the value at
@@ -203,7 +208,7 @@ inline const float* openpbr_lut_data = nullptr;
 #error "OPENPBR_LUT_MODE_BUFFER is not available for this language; use OPENPBR_LUT_MODE_ARRAY"
 #endif
 #define OPENPBR_LUT_FETCH(index) openpbr_lut_data[index]
-#elif !defined(OPENPBR_LUT_FETCH)
+#elif !defined(OPENPBR_LUT_FETCH) && !OPENPBR_USE_TEXTURE_LUTS
 #error "OPENPBR_LUT_MODE_TEXTURE needs OPENPBR_LUT_FETCH(index) defined before including openpbr_lut.h"
 #endif
 
@@ -293,6 +298,11 @@ OPENPBR_FUNC float openpbr_lut_2d(int offset, float mu, float r)
     // Table 0 is the only 2D table, so the offset is implied by the texture.
     OPENPBR_UNUSED(offset);
     return OPENPBR_LUT_SAMPLE_2D(fx, fy);
+#elif OPENPBR_USE_TEXTURE_LUTS
+    // The GGX albedo is the only 2D table of this file (the fuzz lobe reads its own).
+    OPENPBR_UNUSED(offset);
+    return OPENPBR_SAMPLE_2D_TEXTURE(OPENPBR_LUT_TEXTURE_GGX_ALBEDO,
+                                     (vec2(fx, fy) + vec2(0.5f)) / float(OPENPBR_LUT_2D_SIZE));
 #else
     const int x0 = min(int(fx), OPENPBR_LUT_2D_SIZE - 2);
     const int y0 = min(int(fy), OPENPBR_LUT_2D_SIZE - 2);
@@ -309,6 +319,38 @@ OPENPBR_FUNC float openpbr_lut_2d(int offset, float mu, float r)
 
 // Bilinear look-up in the eta slice z of a 3D table: index = offset + (z * N + r_index) * N +
 // mu_index.
+#if OPENPBR_USE_TEXTURE_LUTS
+// Texture id of a 3D table from its offset in the flat layout (constants: folded).
+OPENPBR_FUNC int openpbr_lut_texture_id_3d(int offset)
+{
+    return offset == OPENPBR_LUT_DIELECTRIC_REFLECTION_OFFSET
+               ? OPENPBR_LUT_TEXTURE_DIELECTRIC_REFLECTION
+               : (offset == OPENPBR_LUT_DIELECTRIC_TRANSMISSION_OFFSET ? OPENPBR_LUT_TEXTURE_DIELECTRIC_TRANSMISSION
+                                                                        : OPENPBR_LUT_TEXTURE_DIELECTRIC_INTERFACE);
+}
+
+// The filtered value of 3D table `offset` at node coordinates (fx, fy, fz).
+OPENPBR_FUNC float openpbr_lut_texture_3d(int offset, float fx, float fy, float fz)
+{
+    const vec3 uvw = (vec3(fx, fy, fz) + vec3(0.5f)) / float(OPENPBR_LUT_3D_SIZE);
+    const int lut_id = openpbr_lut_texture_id_3d(offset);
+    if (lut_id == OPENPBR_LUT_TEXTURE_DIELECTRIC_REFLECTION)
+    {
+        return OPENPBR_SAMPLE_3D_TEXTURE(OPENPBR_LUT_TEXTURE_DIELECTRIC_REFLECTION, uvw);
+    }
+    if (lut_id == OPENPBR_LUT_TEXTURE_DIELECTRIC_TRANSMISSION)
+    {
+        return OPENPBR_SAMPLE_3D_TEXTURE(OPENPBR_LUT_TEXTURE_DIELECTRIC_TRANSMISSION, uvw);
+    }
+    return OPENPBR_SAMPLE_3D_TEXTURE(OPENPBR_LUT_TEXTURE_DIELECTRIC_INTERFACE, uvw);
+}
+
+// A fetch at the centre of eta slice z: the filter interpolates within the slice only.
+OPENPBR_FUNC float openpbr_lut_3d_slice(int offset, int x0, int y0, int z, float tx, float ty)
+{
+    return openpbr_lut_texture_3d(offset, float(x0) + tx, float(y0) + ty, float(z));
+}
+#else
 OPENPBR_FUNC float openpbr_lut_3d_slice(int offset, int x0, int y0, int z, float tx, float ty)
 {
     const int n = OPENPBR_LUT_3D_SIZE;
@@ -316,6 +358,7 @@ OPENPBR_FUNC float openpbr_lut_3d_slice(int offset, int x0, int y0, int z, float
     return mix(mix(OPENPBR_LUT_FETCH(base), OPENPBR_LUT_FETCH(base + 1), tx),
                mix(OPENPBR_LUT_FETCH(base + n), OPENPBR_LUT_FETCH(base + n + 1), tx), ty);
 }
+#endif
 
 // Along eta in the 3D table at mu weight tx and roughness weight ty of the cell (x0, y0):
 // quadratic through a 3-node Lagrange stencil around the nearest node, kept on one side of the
@@ -376,6 +419,11 @@ OPENPBR_FUNC float openpbr_lut_3d(int offset, float mu, float r, float x, bool r
     const float fx = openpbr_clamp_finite(mu, 0.0f, 1.0f) * scale;
     const float fy = openpbr_clamp_finite(r, 0.0f, 1.0f) * scale;
     const float fz = openpbr_clamp_finite(x, 0.0f, 1.0f) * scale;
+#if OPENPBR_USE_TEXTURE_LUTS && OPENPBR_LUT_TEXTURE_TRILINEAR_ETA
+    // One trilinear fetch: linear along eta, no upper bracket (slang/openpbr_lut_textures.h).
+    OPENPBR_UNUSED(round_up_eta);
+    return openpbr_lut_texture_3d(offset, fx, fy, fz);
+#endif
     const int x0 = min(int(fx), OPENPBR_LUT_3D_SIZE - 2);
     const int y0 = min(int(fy), OPENPBR_LUT_3D_SIZE - 2);
     const float tx = fx - float(x0);
@@ -391,6 +439,7 @@ OPENPBR_FUNC float openpbr_lut_3d(int offset, float mu, float r, float x, bool r
 }
 
 
+#if !OPENPBR_USE_TEXTURE_LUTS
 // Trilinear blend of the 2 x 2 x 2 nodes from base with strides 1, stride_y and stride_z.
 OPENPBR_FUNC float openpbr_lut_trilinear(int base, int stride_y, int stride_z, float tx, float ty, float tz)
 {
@@ -406,6 +455,7 @@ OPENPBR_FUNC float openpbr_lut_trilinear(int base, int stride_y, int stride_z, f
     const float back = mix(mix(v001, v101, tx), mix(v011, v111, tx), ty);
     return mix(front, back, tz);
 }
+#endif
 
 // Quadrilinear look-up of the 4D table (16 fetches):
 // index = offset + ((phi_index * M + a_index) * N + r_index) * N + mu_index,
@@ -424,12 +474,27 @@ OPENPBR_FUNC float openpbr_lut_4d(int offset, float mu, float r, float a, float 
     const int y0 = min(int(fy), n - 2);
     const int z0 = min(int(fz), m - 2);
     const int w0 = min(int(fw), m - 2);
+#if OPENPBR_USE_TEXTURE_LUTS
+    // The azimuth slabs are stacked along z (slang/openpbr_lut_textures.h): one trilinear fetch
+    // per slab, within it, and the blend of the two slabs here.
+    OPENPBR_UNUSED(offset);
+    OPENPBR_UNUSED(x0);
+    OPENPBR_UNUSED(y0);
+    OPENPBR_UNUSED(z0);
+    const vec2 uv = (vec2(fx, fy) + vec2(0.5f)) / float(n);
+    const float depth = float(m * m);
+    const float near_phi = OPENPBR_SAMPLE_3D_TEXTURE(OPENPBR_LUT_TEXTURE_GGX_ANISOTROPY_RATIO,
+                                                     vec3(uv, (float(w0 * m) + fz + 0.5f) / depth));
+    const float far_phi = OPENPBR_SAMPLE_3D_TEXTURE(OPENPBR_LUT_TEXTURE_GGX_ANISOTROPY_RATIO,
+                                                    vec3(uv, (float((w0 + 1) * m) + fz + 0.5f) / depth));
+#else
     const int stride_a = n * n;
     const int stride_phi = n * n * m;
     const int base = offset + w0 * stride_phi + z0 * stride_a + y0 * n + x0;
     const float near_phi = openpbr_lut_trilinear(base, n, stride_a, fx - float(x0), fy - float(y0), fz - float(z0));
     const float far_phi =
         openpbr_lut_trilinear(base + stride_phi, n, stride_a, fx - float(x0), fy - float(y0), fz - float(z0));
+#endif
     return mix(near_phi, far_phi, fw - float(w0));
 }
 

@@ -362,6 +362,27 @@ OPENPBR_FUNC float openpbr_volume_channel_ratio(float extinction_k, float extinc
     return exp(clamp(log_ratio - (extinction_k - extinction_c) * distance_value, -1e4f, 80.0f));
 }
 
+// The one-sample spectral-MIS weight of a flight that ends at `distance_value` (scattered:
+// transmittance * sigma_s / pdf(t); passed: transmittance / P(pass)), divided through by the
+// density (or transmittance) of a reference channel with extinction `extinction_reference`
+// so that neither part under- or overflows on its own. Any reference channel gives the same
+// weight up to rounding; the sampler passes the drawn one, whose own term makes the
+// denominator at least P(c) > 0.
+OPENPBR_FUNC vec3 openpbr_volume_flight_weight(OPENPBR_IN(OpenPBR_HomogeneousVolume) volume, vec3 probabilities,
+                                               float extinction_reference, float distance_value, bool scattered)
+{
+    const vec3 ratio =
+        vec3(openpbr_volume_channel_ratio(volume.extinction.x, extinction_reference, distance_value, scattered),
+             openpbr_volume_channel_ratio(volume.extinction.y, extinction_reference, distance_value, scattered),
+             openpbr_volume_channel_ratio(volume.extinction.z, extinction_reference, distance_value, scattered));
+    const vec3 numerator = scattered ? ratio * volume.albedo : ratio;
+    const float denominator = dot(probabilities, ratio);
+    // A channel with P = 0 can get a large weight, but its throughput is 0; the clamp keeps the
+    // weight finite for it.
+    return denominator > OPENPBR_FLOAT_MIN_NORMAL ? openpbr_clamp_finite(numerator / denominator, 0.0f, OPENPBR_FLOAT_MAX)
+                                                  : vec3(0.0f);
+}
+
 // Samples where the path, travelling a segment of length t_max (e.g. to the next surface hit;
 // +inf is allowed) through the medium, scatters next. u_channel picks the channel in
 // proportion to `throughput`, u_distance the exponential free flight of that channel
@@ -406,18 +427,7 @@ OPENPBR_FUNC OpenPBR_VolumeDistanceSample openpbr_volume_sample_distance(OPENPBR
     // The weight divided through by the drawn channel's own density (or transmittance): the
     // denominator is then >= P(c) > 0, so the weight stays finite where the absolute pdf
     // underflows (e.g. a flight of optical depth 69 in a medium with sigma_t = 1e-18).
-    const float flight = result.distance;
-    const bool scattered = result.scattered;
-    const vec3 ratio = vec3(openpbr_volume_channel_ratio(volume.extinction.x, extinction_channel, flight, scattered),
-                            openpbr_volume_channel_ratio(volume.extinction.y, extinction_channel, flight, scattered),
-                            openpbr_volume_channel_ratio(volume.extinction.z, extinction_channel, flight, scattered));
-    const vec3 numerator = result.scattered ? ratio * volume.albedo : ratio;
-    const float denominator = dot(probabilities, ratio);
-    // A channel with P = 0 can get a large weight, but its throughput is 0; the clamp keeps the
-    // weight finite for it.
-    result.weight = denominator > OPENPBR_FLOAT_MIN_NORMAL
-                        ? openpbr_clamp_finite(numerator / denominator, 0.0f, OPENPBR_FLOAT_MAX)
-                        : vec3(0.0f);
+    result.weight = openpbr_volume_flight_weight(volume, probabilities, extinction_channel, result.distance, result.scattered);
     // The absolute pdf, for MIS with other distance samplers; it may underflow to 0 for
     // extremely long flights, where the weight above is still exact.
     result.pdf = openpbr_volume_distance_pdf(volume, throughput, result.distance, result.scattered);

@@ -98,6 +98,9 @@ struct GpuPath
     std::string name;
     std::string kernel_file;  // under the kernel directory
     std::string entry_point;
+    // Texture tables (OPENPBR_USE_TEXTURE_LUTS): the tables are sampled images at bindings
+    // 6-13 (slang/openpbr_lut_textures.h), not the buffers at 0 and 1.
+    bool texture_tables = false;
 };
 
 const std::vector<GpuPath>& gpu_paths()
@@ -108,6 +111,9 @@ const std::vector<GpuPath>& gpu_paths()
         {"slang-hlsl", "conformance.slang-hlsl.spv", "main"},
         {"slang-glsl", "conformance.slang-glsl.spv", "main"},
         {"hlsl", "conformance.hlsl.spv", "main"},
+        {"glsl-spirv-texture", "conformance_texture.glsl.spv", "main", true},
+        {"slang-spirv-texture", "conformance_texture.slang.spv", "main", true},
+        {"hlsl-texture", "conformance_texture.hlsl.spv", "main", true},
     };
     return paths;
 }
@@ -131,8 +137,47 @@ ComputePipelineDescription conformance_pipeline_description(const GpuPath& path,
     ComputePipelineDescription description;
     description.spirv_words = load_spirv_file(kernel_directory + "/" + path.kernel_file);
     description.entry_point = path.entry_point;
-    description.bindings = {{0, false}, {1, false}, {2, false}, {3, false}, {4, false}, {5, false}};
+    if (path.texture_tables)
+    {
+        description.bindings = {{2, false}, {3, false}, {4, false}, {5, false}};
+        for (std::uint32_t table = 0; table < OPENPBR_LUT_TEXTURE_COUNT; ++table)
+        {
+            description.bindings.push_back({OPENPBR_LUT_TEXTURES_FIRST_BINDING + table, false, true});
+        }
+    }
+    else
+    {
+        description.bindings = {{0, false}, {1, false}, {2, false}, {3, false}, {4, false}, {5, false}};
+    }
     return description;
+}
+
+// The eight table textures, filled as slang/openpbr_lut_textures.h says (contiguous ranges of
+// the shipped flat tables, x fastest).
+struct TableTexture
+{
+    std::uint32_t width;
+    std::uint32_t height;
+    std::uint32_t depth;
+    bool fuzz_table;  // from the fuzz LTC table rather than the energy-compensation tables
+    std::size_t offset;
+};
+
+std::vector<TableTexture> table_textures()
+{
+    const std::uint32_t n2 = OPENPBR_LUT_2D_SIZE;
+    const std::uint32_t n3 = OPENPBR_LUT_3D_SIZE;
+    const std::uint32_t n4 = OPENPBR_LUT_4D_SIZE;
+    const std::uint32_t m4 = OPENPBR_LUT_4D_ANISOTROPY_SIZE;
+    const std::uint32_t nf = OPENPBR_FUZZ_LTC_SIZE;
+    return {{n2, n2, 1, false, OPENPBR_LUT_GGX_ALBEDO_OFFSET},
+            {n3, n3, n3, false, OPENPBR_LUT_DIELECTRIC_REFLECTION_OFFSET},
+            {n3, n3, n3, false, OPENPBR_LUT_DIELECTRIC_TRANSMISSION_OFFSET},
+            {n3, n3, n3, false, OPENPBR_LUT_DIELECTRIC_INTERFACE_OFFSET},
+            {n4, n4, m4 * m4, false, OPENPBR_LUT_GGX_ANISOTROPY_RATIO_OFFSET},
+            {nf, nf, 1, true, OPENPBR_FUZZ_LTC_A_OFFSET},
+            {nf, nf, 1, true, OPENPBR_FUZZ_LTC_B_OFFSET},
+            {nf, nf, 1, true, OPENPBR_FUZZ_LTC_R_OFFSET}};
 }
 
 GpuBatchResult dispatch_conformance(ComputePipeline& pipeline, const std::vector<float>& queries,
@@ -146,11 +191,34 @@ GpuBatchResult dispatch_conformance(ComputePipeline& pipeline, const std::vector
     std::vector<std::byte> query_bytes = to_bytes(queries);
     std::vector<std::byte> material_bytes = to_bytes(materials);
     std::vector<std::byte> result_bytes(query_count * OPENPBR_RESULT_FLOATS * sizeof(float));
-    std::vector<std::byte> parameter_bytes =
-        to_bytes(std::vector<std::uint32_t>{std::uint32_t(query_count), settings.mode, 0, 0});
-    const std::vector<BufferBinding> buffers = {{0, &lut_bytes, false},       {1, &fuzz_bytes, false},
-                                                {2, &query_bytes, false},     {3, &material_bytes, false},
-                                                {4, &parameter_bytes, false}, {5, &result_bytes, true}};
+    std::vector<std::byte> parameter_bytes = to_bytes(std::vector<std::uint32_t>{std::uint32_t(query_count), settings.mode, 0, 0});
+    std::vector<BufferBinding> buffers = {{2, &query_bytes, false}, {3, &material_bytes, false},
+                                          {4, &parameter_bytes, false}, {5, &result_bytes, true}};
+    std::vector<std::vector<std::byte>> texture_bytes;
+    if (settings.texture_tables)
+    {
+        const std::vector<TableTexture> textures = table_textures();
+        texture_bytes.reserve(textures.size());
+        for (std::size_t table = 0; table < textures.size(); ++table)
+        {
+            const TableTexture& texture = textures[table];
+            const std::vector<std::byte>& source = texture.fuzz_table ? fuzz_bytes : lut_bytes;
+            const std::size_t bytes = std::size_t(texture.width) * texture.height * texture.depth * sizeof(float);
+            const auto first = source.begin() + std::ptrdiff_t(texture.offset * sizeof(float));
+            texture_bytes.emplace_back(first, first + std::ptrdiff_t(bytes));
+            BufferBinding image;
+            image.binding = OPENPBR_LUT_TEXTURES_FIRST_BINDING + std::uint32_t(table);
+            image.data = &texture_bytes.back();
+            image.image_width = texture.width;
+            image.image_height = texture.height;
+            image.image_depth = texture.depth;
+            buffers.push_back(image);
+        }
+    }
+    else
+    {
+        buffers.insert(buffers.begin(), {{0, &lut_bytes, false}, {1, &fuzz_bytes, false}});
+    }
     const std::uint32_t groups = std::uint32_t((query_count + 63) / 64);
     GpuBatchResult batch;
     DispatchRequest request;
@@ -184,7 +252,9 @@ GpuBatchResult execute_gpu_path(const GpuPath& path, VulkanContext& context, con
                                 const std::vector<float>& materials, const std::string& kernel_directory)
 {
     ComputePipeline pipeline(context, conformance_pipeline_description(path, kernel_directory));
-    return dispatch_conformance(pipeline, queries, materials, 3);
+    ConformanceDispatchSettings settings;
+    settings.texture_tables = path.texture_tables;
+    return dispatch_conformance(pipeline, queries, materials, 3, settings);
 }
 
 // The pooled metric: every compared slot's relative error (floor 1e-3) in one population.
@@ -528,7 +598,8 @@ SpecializedConformanceRun run_conformance_gpu_specialized(const std::string& pat
     {
         check_pipeline_supports(materials, *pipeline_mask);
     }
-    SpecializedPipelineCache cache(context, conformance_pipeline_description(find_gpu_path(path_name), kernel_directory));
+    const GpuPath& path = find_gpu_path(path_name);
+    SpecializedPipelineCache cache(context, conformance_pipeline_description(path, kernel_directory));
     const std::vector<float> packed = pack_materials(materials);
     const std::size_t query_count = queries.size() / OPENPBR_QUERY_FLOATS;
     // Queries grouped by the toggle set of the pipeline that runs them.
@@ -555,7 +626,9 @@ SpecializedConformanceRun run_conformance_gpu_specialized(const std::string& pat
         }
         const std::size_t builds_before = cache.build_count();
         ComputePipeline& pipeline = cache.pipeline(mask);
-        const GpuBatchResult batch = dispatch_conformance(pipeline, group_queries, packed, repeats, settings);
+        ConformanceDispatchSettings path_settings = settings;
+        path_settings.texture_tables = path.texture_tables;
+        const GpuBatchResult batch = dispatch_conformance(pipeline, group_queries, packed, repeats, path_settings);
         for (std::size_t i = 0; i < members.size(); ++i)
         {
             std::memcpy(&run.results[members[i] * OPENPBR_RESULT_FLOATS], &batch.results[i * OPENPBR_RESULT_FLOATS],
@@ -706,6 +779,10 @@ std::vector<float> make_queries(std::size_t query_count, std::size_t material_co
         {
             out[k] = std::min(uniform(generator), 0.99999994f);
         }
+        // Exterior IOR: mostly air; one query in eight under water (1.33), one in eight inside
+        // glass (1.5), so the relative IOR of every interface also falls below 1.
+        const float exterior_choice = uniform(generator);
+        out[10] = exterior_choice < 0.75f ? 1.0f : (exterior_choice < 0.875f ? 1.33f : 1.5f);
     }
     return queries;
 }

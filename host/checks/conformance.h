@@ -156,6 +156,9 @@ struct ConformanceDispatchSettings
 {
     std::uint32_t mode = 0;
     bool device_local = false;
+    // Tables as sampled images (OPENPBR_USE_TEXTURE_LUTS kernels, slang/openpbr_lut_textures.h)
+    // instead of storage buffers at bindings 0 and 1, e.g. true for the *-texture paths.
+    bool texture_tables = false;
 };
 
 // The pipeline description of a Vulkan path's conformance kernel (bindings 0 tables, 1 fuzz

@@ -48,7 +48,7 @@ constexpr float denormal_value = 1e-40f;
 // Record sizes of targets/kernels/openpbr_conformance_kernel.h (OPENPBR_QUERY_FLOATS and
 // OPENPBR_RESULT_FLOATS; that header's body is the CPU kernel of conformance.cpp and is not
 // included twice). run_path checks the result size against them.
-constexpr std::size_t query_floats = 10;
+constexpr std::size_t query_floats = 11;
 constexpr std::size_t result_floats = 24;
 
 struct Where
@@ -191,10 +191,11 @@ StabilityCase parse_case(const nlohmann::json& item, std::size_t index, const st
     where.case_name = result.name;
     for (const auto& [key, value] : item.items())
     {
-        if (key != "name" && key != "description" && key != "material" && key != "view" && key != "lights")
+        if (key != "name" && key != "description" && key != "material" && key != "view" && key != "lights" &&
+            key != "exterior_ior")
         {
             throw StabilityCorpusError(
-                where("unknown key '" + key + "' (expected name, description, material, view, lights)"));
+                where("unknown key '" + key + "' (expected name, description, material, view, lights, exterior_ior)"));
         }
     }
     if (item.contains("description"))
@@ -279,6 +280,12 @@ StabilityCase parse_case(const nlohmann::json& item, std::size_t index, const st
         }
         result.view = parse_vec3(item["view"], field_where, "a direction");
     }
+    if (item.contains("exterior_ior"))
+    {
+        Where field_where = where;
+        field_where.field = "exterior_ior";
+        result.exterior_ior = parse_float(item["exterior_ior"], field_where);
+    }
     {
         Where field_where = where;
         field_where.field = "lights";
@@ -338,6 +345,7 @@ void fill_query(float* out, const StabilityCase& stability_case, std::size_t cas
         light = glm::vec3(radius * std::cos(phi), radius * std::sin(phi), z);
     }
     out[4] = light.x, out[5] = light.y, out[6] = light.z;
+    out[10] = stability_case.exterior_ior;
 }
 
 // ---- Per-query checks -------------------------------------------------------------------------

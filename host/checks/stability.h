@@ -22,6 +22,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <glm/glm.hpp>  // first: the OpenPBR headers require it (interop/openpbr_interop_cpp.h)
 #include "slang/openpbr_resolved_inputs.h"
 
 namespace openpbr::host {
@@ -41,6 +42,7 @@ struct StabilityCase
     std::string description;  // optional free text from the corpus
     openpbr::OpenPBR_ResolvedInputs inputs;  // spec defaults with the case's overrides, unclamped
     glm::vec3 view{0.0f, 0.0f, 1.0f};        // as written (not normalized)
+    float exterior_ior = 1.0f;               // IOR of the medium around the surface, e.g. 1.33 (water)
     std::vector<glm::vec3> lights;           // normalized where they have a direction
     std::vector<std::string> inputs_set;     // input names the case overrides, corpus order
 };

@@ -808,10 +808,13 @@ void create_sampled_image(const ContextState& context, const BufferBinding& bind
     const VkFormat format = VK_FORMAT_R32_SFLOAT;
     const std::size_t row_bytes = std::size_t(binding.image_width) * sizeof(float);
     const std::string where = "run: image at binding " + std::to_string(binding.binding);
+    const uint32_t depth = std::max(binding.image_depth, 1u);
+    const bool volume = depth > 1;
     if (binding.image_height == 0 || binding.data == nullptr ||
-        binding.data->size() != row_bytes * binding.image_height) {
+        binding.data->size() != row_bytes * binding.image_height * depth) {
         throw std::runtime_error(where + " needs " + std::to_string(binding.image_width) + " x " +
-                                 std::to_string(binding.image_height) + " floats of data");
+                                 std::to_string(binding.image_height) + " x " + std::to_string(depth) +
+                                 " floats of data");
     }
     VkFormatProperties format_properties{};
     vkGetPhysicalDeviceFormatProperties(context.physical_device, format, &format_properties);
@@ -821,11 +824,22 @@ void create_sampled_image(const ContextState& context, const BufferBinding& bind
         throw std::runtime_error(where + ": the device cannot sample linear-tiled R32_SFLOAT images "
                                  "with bilinear filtering");
     }
+    if (volume) {
+        // Linear tiling is guaranteed for 2D images only; a 3D one needs the device's word.
+        VkImageFormatProperties volume_properties{};
+        if (vkGetPhysicalDeviceImageFormatProperties(context.physical_device, format, VK_IMAGE_TYPE_3D,
+                                                     VK_IMAGE_TILING_LINEAR, VK_IMAGE_USAGE_SAMPLED_BIT, 0,
+                                                     &volume_properties) != VK_SUCCESS ||
+            volume_properties.maxExtent.depth < depth) {
+            throw std::runtime_error(where + ": the device cannot sample linear-tiled 3D R32_SFLOAT images of depth " +
+                                     std::to_string(depth));
+        }
+    }
     VkImageCreateInfo image_info{};
     image_info.sType = VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO;
-    image_info.imageType = VK_IMAGE_TYPE_2D;
+    image_info.imageType = volume ? VK_IMAGE_TYPE_3D : VK_IMAGE_TYPE_2D;
     image_info.format = format;
-    image_info.extent = {binding.image_width, binding.image_height, 1};
+    image_info.extent = {binding.image_width, binding.image_height, depth};
     image_info.mipLevels = 1;
     image_info.arrayLayers = 1;
     image_info.samples = VK_SAMPLE_COUNT_1_BIT;
@@ -845,15 +859,18 @@ void create_sampled_image(const ContextState& context, const BufferBinding& bind
     const VkImageSubresource subresource{VK_IMAGE_ASPECT_COLOR_BIT, 0, 0};
     VkSubresourceLayout layout{};
     vkGetImageSubresourceLayout(device, target.image, &subresource, &layout);
-    for (uint32_t row = 0; row < binding.image_height; ++row) {
-        std::memcpy(static_cast<std::byte*>(target.mapped) + layout.offset + row * layout.rowPitch,
-                    binding.data->data() + row * row_bytes, row_bytes);
+    for (uint32_t slice = 0; slice < depth; ++slice) {
+        for (uint32_t row = 0; row < binding.image_height; ++row) {
+            std::memcpy(static_cast<std::byte*>(target.mapped) + layout.offset + slice * layout.depthPitch +
+                            row * layout.rowPitch,
+                        binding.data->data() + (std::size_t(slice) * binding.image_height + row) * row_bytes, row_bytes);
+        }
     }
 
     VkImageViewCreateInfo view_info{};
     view_info.sType = VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO;
     view_info.image = target.image;
-    view_info.viewType = VK_IMAGE_VIEW_TYPE_2D;
+    view_info.viewType = volume ? VK_IMAGE_VIEW_TYPE_3D : VK_IMAGE_VIEW_TYPE_2D;
     view_info.format = format;
     view_info.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
     check(vkCreateImageView(device, &view_info, nullptr, &target.view), "vkCreateImageView");

@@ -69,6 +69,9 @@ struct BufferBinding {
     // filtering, OPENPBR_LUT_FILTERED_2D). Never read back.
     uint32_t image_width = 0;
     uint32_t image_height = 0;
+    // Above 1: a 3D image of image_depth slices of image_width x image_height, slice by slice
+    // in *data, with trilinear filtering (e.g. the 3D tables of OPENPBR_USE_TEXTURE_LUTS).
+    uint32_t image_depth = 1;
 };
 
 // The descriptor layout of one binding, as the pipeline is created with it.

@@ -21,6 +21,7 @@
 #include <string>
 #include <vector>
 
+#include <glm/glm.hpp>  // first: the OpenPBR headers require it (interop/openpbr_interop_cpp.h)
 #include "slang/openpbr_resolved_inputs.h"
 
 namespace openpbr::host {

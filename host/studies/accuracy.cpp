@@ -386,7 +386,7 @@ LavapipeWorkload lavapipe_workload(const std::vector<AccuracyMaterial>& material
     const std::vector<float> probe = make_queries(1, 1, 1);
     const std::size_t query_floats = probe.size();
     workload.result_floats = run_conformance_cpu(probe, pack_materials({default_material()})).size();
-    if (query_floats < 10)
+    if (query_floats < 11)
     {
         throw std::runtime_error("accuracy: unexpected conformance query record of " + std::to_string(query_floats) + " floats");
     }
@@ -398,6 +398,7 @@ LavapipeWorkload lavapipe_workload(const std::vector<AccuracyMaterial>& material
         std::copy(queries[i].view, queries[i].view + 3, record + 1);
         std::copy(queries[i].light, queries[i].light + 3, record + 4);
         std::copy(queries[i].u, queries[i].u + 3, record + 7);
+        record[10] = 1.0f;  // exterior IOR: the study's materials sit in air
     }
     return workload;
 }

@@ -15,6 +15,7 @@
 #include "host/tables/lut_generator.h"
 #include "host/support/random.h"
 
+#include <glm/glm.hpp>  // first: the OpenPBR headers require it (interop/openpbr_interop_cpp.h)
 #include "slang/math/openpbr_fresnel.h"
 #include "slang/math/openpbr_ggx.h"
 #include "slang/math/openpbr_vndf.h"

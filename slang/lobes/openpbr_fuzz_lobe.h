@@ -50,6 +50,9 @@
 #define OPENPBR_FUZZ_LTC_MAX_A 1e3f
 #define OPENPBR_FUZZ_LTC_MAX_ABS_B 10.0f
 
+// Texture tables (OPENPBR_USE_TEXTURE_LUTS=1) select OPENPBR_FUZZ_LTC_MODE_TEXTURE without a fetch.
+#include "../openpbr_lut_textures.h"
+
 #if !defined(OPENPBR_FUZZ_LTC_MODE_ARRAY) && !defined(OPENPBR_FUZZ_LTC_MODE_BUFFER) && \
     !defined(OPENPBR_FUZZ_LTC_MODE_TEXTURE)
 #if defined(OPENPBR_LUT_MODE_ARRAY)
@@ -109,7 +112,9 @@ inline constexpr float openpbr_fuzz_ltc_data[OPENPBR_FUZZ_LTC_TOTAL_COUNT] = {
 #include "../generated/openpbr_fuzz_ltc_values.inc"
 };
 }
-#define OPENPBR_FUZZ_LTC_FETCH(index) openpbr_fuzz_ltc_data[index]
+// Qualified: a host interop layer (OPENPBR_USE_CUSTOM_INTEROP) may put the BSDF in another
+// namespace; the shared table stays in openpbr.
+#define OPENPBR_FUZZ_LTC_FETCH(index) ::openpbr::openpbr_fuzz_ltc_data[index]
 #endif
 #elif defined(OPENPBR_FUZZ_LTC_MODE_BUFFER)
 #if defined(OPENPBR_LANGUAGE_TARGET_SLANG)
@@ -130,7 +135,7 @@ inline const float* openpbr_fuzz_ltc_data = nullptr;
 #error "OPENPBR_FUZZ_LTC_MODE_BUFFER is not available for this language; use OPENPBR_FUZZ_LTC_MODE_ARRAY"
 #endif
 #define OPENPBR_FUZZ_LTC_FETCH(index) openpbr_fuzz_ltc_data[index]
-#elif !defined(OPENPBR_FUZZ_LTC_FETCH)
+#elif !defined(OPENPBR_FUZZ_LTC_FETCH) && !OPENPBR_USE_TEXTURE_LUTS
 #error "OPENPBR_FUZZ_LTC_MODE_TEXTURE needs OPENPBR_FUZZ_LTC_FETCH(index) defined before including openpbr_fuzz_lobe.h"
 #endif
 
@@ -146,6 +151,7 @@ struct OpenPBR_FuzzLobe
     bool is_active;      // false for a view below the surface: no reflection, no samples
 };
 
+#if !OPENPBR_USE_TEXTURE_LUTS
 // Bilinear interpolation of one channel; `base` indexes node (x0, y0) of that channel.
 OPENPBR_FUNC float openpbr_fuzz_ltc_bilinear(int base, float tx, float ty)
 {
@@ -155,6 +161,7 @@ OPENPBR_FUNC float openpbr_fuzz_ltc_bilinear(int base, float tx, float ty)
     const float v11 = OPENPBR_FUZZ_LTC_FETCH(base + OPENPBR_FUZZ_LTC_SIZE + 1);
     return mix(mix(v00, v10, tx), mix(v01, v11, tx), ty);
 }
+#endif
 
 // (a, b, R) at mu = cos(theta_o) and alpha = fuzz_roughness, both clamped to [0, 1] (NaN -> 0);
 // a and b clamped to the bounds above, R to [0, 1].
@@ -167,10 +174,20 @@ OPENPBR_FUNC vec3 openpbr_fuzz_ltc_coefficients(float mu, float alpha)
     const int y0 = min(int(fy), OPENPBR_FUZZ_LTC_SIZE - 2);
     const float tx = fx - float(x0);
     const float ty = fy - float(y0);
+#if OPENPBR_USE_TEXTURE_LUTS
+    // One filtered fetch per channel at the same node coordinate (slang/openpbr_lut_textures.h).
+    OPENPBR_UNUSED(tx);
+    OPENPBR_UNUSED(ty);
+    const vec2 uv = (vec2(fx, fy) + vec2(0.5f)) / float(OPENPBR_FUZZ_LTC_SIZE);
+    const float a = OPENPBR_SAMPLE_2D_TEXTURE(OPENPBR_LUT_TEXTURE_FUZZ_LTC_A, uv);
+    const float b = OPENPBR_SAMPLE_2D_TEXTURE(OPENPBR_LUT_TEXTURE_FUZZ_LTC_B, uv);
+    const float r = OPENPBR_SAMPLE_2D_TEXTURE(OPENPBR_LUT_TEXTURE_FUZZ_LTC_R, uv);
+#else
     const int node = y0 * OPENPBR_FUZZ_LTC_SIZE + x0;
     const float a = openpbr_fuzz_ltc_bilinear(OPENPBR_FUZZ_LTC_A_OFFSET + node, tx, ty);
     const float b = openpbr_fuzz_ltc_bilinear(OPENPBR_FUZZ_LTC_B_OFFSET + node, tx, ty);
     const float r = openpbr_fuzz_ltc_bilinear(OPENPBR_FUZZ_LTC_R_OFFSET + node, tx, ty);
+#endif
     return vec3(openpbr_clamp_finite(a, OPENPBR_FUZZ_LTC_MIN_A, OPENPBR_FUZZ_LTC_MAX_A),
                 openpbr_clamp_finite(b, -OPENPBR_FUZZ_LTC_MAX_ABS_B, OPENPBR_FUZZ_LTC_MAX_ABS_B),
                 openpbr_clamp_finite(r, 0.0f, 1.0f));

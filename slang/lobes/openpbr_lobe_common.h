@@ -12,8 +12,15 @@
 #include "../math/openpbr_math.h"
 
 // OpenPBR_BsdfLobeType: scattering-kind flags in the low byte, the lobe's identity above.
-// GLSL has no typedef, so the type is a macro everywhere.
+// A type where the language has typedef (so it reaches Slang importers, which see no macros);
+// GLSL has none: a macro there.
+#if defined(OPENPBR_LANGUAGE_TARGET_GLSL)
 #define OpenPBR_BsdfLobeType uint
+#else
+OPENPBR_NAMESPACE_BEGIN
+typedef uint OpenPBR_BsdfLobeType;
+OPENPBR_NAMESPACE_END
+#endif
 #define OPENPBR_LOBE_TYPE_NONE 0u
 #define OPENPBR_LOBE_TYPE_REFLECTION 1u
 #define OPENPBR_LOBE_TYPE_TRANSMISSION 2u

@@ -71,8 +71,10 @@ OPENPBR_FUNC vec3 openpbr_normalize(vec3 v)
 
 OPENPBR_FUNC float openpbr_square(float x) { return x * x; }
 OPENPBR_FUNC vec3 openpbr_square(vec3 x) { return x * x; }
-OPENPBR_FUNC float openpbr_saturate(float x) { return clamp(x, 0.0f, 1.0f); }
-OPENPBR_FUNC vec3 openpbr_saturate(vec3 x) { return clamp(x, vec3(0.0f), vec3(1.0f)); }
+// Through saturate(): built in for Slang, HLSL and Metal, defined by the C++, CUDA and GLSL
+// backends, or the host's own (OPENPBR_USE_CUSTOM_SATURATE=1, interop/openpbr_interop.h).
+OPENPBR_FUNC float openpbr_saturate(float x) { return saturate(x); }
+OPENPBR_FUNC vec3 openpbr_saturate(vec3 x) { return saturate(x); }
 OPENPBR_FUNC float openpbr_max3(vec3 v) { return max(v.x, max(v.y, v.z)); }
 
 // sqrt that never sees a negative argument produced by rounding.

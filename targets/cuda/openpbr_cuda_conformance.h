@@ -13,8 +13,8 @@
 namespace openpbr::cuda_conformance {
 
 // Record sizes of targets/kernels/openpbr_conformance_kernel.h (checked there by
-// headers_conformance.cu), e.g. 10 floats per query.
-constexpr unsigned query_floats = 10;
+// headers_conformance.cu), e.g. 11 floats per query.
+constexpr unsigned query_floats = 11;
 constexpr unsigned result_floats = 24;
 
 // Device pointers (cudaMalloc'ed by the caller) and the query count.

@@ -33,8 +33,11 @@ const SPLAT = { vec2: 'openpbr_splat2', vec3: 'openpbr_splat3', vec4: 'openpbr_s
 const PRESETS = {
   hlsl: [
     ['OPENPBR_LANGUAGE_TARGET_HLSL', 1],
+    // The generated file is the whole interop layer, spelled in HLSL: no host hooks for it.
+    ['OPENPBR_USE_CUSTOM_INTEROP', 0],
+    ['OPENPBR_USE_CUSTOM_VEC_TYPES', 0],
     ...['OPENPBR_LANGUAGE_TARGET_SLANG', 'OPENPBR_LANGUAGE_TARGET_GLSL', 'OPENPBR_LANGUAGE_TARGET_CPP',
-      'OPENPBR_LANGUAGE_TARGET_CUDA', 'OPENPBR_LANGUAGE_TARGET_METAL', 'OPENPBR_LUT_MODE_ARRAY',
+      'OPENPBR_LANGUAGE_TARGET_CUDA', 'OPENPBR_LANGUAGE_TARGET_METAL', 'OPENPBR_LANGUAGE_TARGET_MSL', 'OPENPBR_LUT_MODE_ARRAY',
       'OPENPBR_FUZZ_LTC_MODE_ARRAY', '__cplusplus', '__CUDACC__', '__CUDA_ARCH__', '__METAL_VERSION__',
     ].map((name) => [name, null]),
   ],

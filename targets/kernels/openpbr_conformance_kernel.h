@@ -3,7 +3,7 @@
 // (host/checks/conformance.cpp) include this same text, so all paths run identical code.
 //
 // Record layouts (floats):
-//   query  (OPENPBR_QUERY_FLOATS):  material index, view (3), light (3), u (3)
+//   query  (OPENPBR_QUERY_FLOATS):  material index, view (3), light (3), u (3), exterior IOR
 //   result (OPENPBR_RESULT_FLOATS): eval.diffuse (3), eval.specular (3), pdf(light),
 //                                   sample.direction (3), sample.weight.diffuse (3),
 //                                   sample.weight.specular (3), sample.pdf, sample.lobe_type,
@@ -18,7 +18,7 @@
 #ifndef OPENPBR_CONFORMANCE_KERNEL_H
 #define OPENPBR_CONFORMANCE_KERNEL_H
 
-#define OPENPBR_QUERY_FLOATS 10
+#define OPENPBR_QUERY_FLOATS 11
 #define OPENPBR_RESULT_FLOATS 24
 
 #define OPENPBR_CONFORMANCE_MODE_ALL 0u
@@ -49,9 +49,10 @@ OPENPBR_FUNC void openpbr_conformance_run_query(uint query_index, uint mode)
     const vec3 view = openpbr_conformance_read_vec3(query + 1u);
     const vec3 light = openpbr_conformance_read_vec3(query + 4u);
     const vec3 u = openpbr_conformance_read_vec3(query + 7u);
+    const float exterior_ior = OPENPBR_QUERY_READ(query + 10u);
 
     const OpenPBR_ResolvedInputs inputs = openpbr_unpack_material(material_index);
-    const OpenPBR_PreparedBsdf bsdf = openpbr_prepare(inputs, view);
+    const OpenPBR_PreparedBsdf bsdf = openpbr_prepare(inputs, view, openpbr_default_rgb_wavelengths_nm(), exterior_ior);
     const uint result = query_index * uint(OPENPBR_RESULT_FLOATS);
     if (mode == OPENPBR_CONFORMANCE_MODE_ALL || mode == OPENPBR_CONFORMANCE_MODE_EVAL)
     {

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "host/tables/fuzz_fit.h"
+#include <glm/glm.hpp>  // first: the OpenPBR headers require it (interop/openpbr_interop_cpp.h)
 #include "slang/lobes/openpbr_fuzz_lobe.h"
 
 namespace {

@@ -5,6 +5,7 @@
 // multi-lobe analytic fit of Wyman, Sloan & Shirley 2013, JCGT 2(2)), then converted to linear
 // Rec.709 RGB with a matrix built here from the primaries and the D65 white, each channel
 // normalized so a flat spectrum of 1 gives 1.
+#include <glm/glm.hpp>  // first: the OpenPBR headers require it (interop/openpbr_interop_cpp.h)
 #include "slang/math/openpbr_thin_film.h"
 #include "slang/math/openpbr_fresnel.h"
 

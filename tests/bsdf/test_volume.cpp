@@ -1,6 +1,7 @@
 // Tests for slang/openpbr_volume.h: the specification's medium formulas (docs/spec-notes.md
 // section 5), the van de Hulst inversion, the Henyey-Greenstein phase function, the spectral-MIS
 // distance sampler, and robustness against extreme inputs. All random tests use fixed seeds.
+#include <glm/glm.hpp>  // first: the OpenPBR headers require it (interop/openpbr_interop_cpp.h)
 #include "slang/openpbr_volume.h"
 #include "slang/openpbr_input_contract.h"  // the caller-side clamping, for the non-finite test
 

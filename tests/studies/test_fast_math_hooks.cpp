@@ -12,6 +12,7 @@
 #include <limits>
 #include <string>
 
+#include <glm/glm.hpp>  // first: the OpenPBR headers require it (interop/openpbr_interop_cpp.h)
 #include "slang/math/openpbr_math.h"
 
 namespace {

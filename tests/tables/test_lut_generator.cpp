@@ -5,6 +5,7 @@
 // slang/generated/openpbr_lut.bin and openpbr_lut_values.inc).
 #include "host/tables/lut_generator.h"
 
+#include <glm/glm.hpp>  // first: the OpenPBR headers require it (interop/openpbr_interop_cpp.h)
 #include "slang/math/openpbr_fresnel.h"
 #include "slang/math/openpbr_ggx.h"
 

@@ -23,7 +23,7 @@ namespace {
 using namespace openpbr::host;
 
 constexpr std::size_t query_count = 4096;
-constexpr int query_floats = 10;   // openpbr_conformance_kernel.h
+constexpr int query_floats = 11;  // OPENPBR_QUERY_FLOATS, targets/kernels/openpbr_conformance_kernel.h
 constexpr int result_floats = 24;
 
 struct Batch
@@ -129,6 +129,7 @@ TEST(Targets, ExampleShadeBatchMatchesCpu)
         const float* in = b.queries.data() + q * query_floats;
         float* out = records.data() + q * 16;
         std::copy(in + 1, in + 4, out);       // view
+        out[3] = in[10];                      // exterior IOR
         std::copy(in + 4, in + 7, out + 4);   // light
         std::copy(in + 7, in + 10, out + 8);  // u
         const std::uint32_t material = std::uint32_t(in[0]);
