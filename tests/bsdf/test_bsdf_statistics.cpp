@@ -40,6 +40,8 @@ struct MaterialConfig
     // specular_ior values to test; empty: the value make_inputs sets. For transmission, e.g.
     // {1.5f, 1.0f / 1.5f} to test entering and leaving a denser medium.
     std::vector<float> ior_variants = {};
+    // IOR of the medium around the surface (openpbr_prepare's exterior_ior), e.g. 1.33 in water.
+    float exterior_ior = 1.0f;
 };
 
 // A tilted, non-axis-aligned geometry frame: exercises the world <-> local transforms.
@@ -142,6 +144,30 @@ const std::vector<MaterialConfig>& material_configs()
          },
          {Side::outside, Side::inside},
          {1.5f, 1.0f / 1.5f}},
+        // The rough dielectric at relative IORs through 1 (index-matched: a delta pass-through),
+        // in air ... 0.99 and 1.01 are not here: their refracted lobes are 2.3e-3 rad wide at
+        // roughness 0.5 (openpbr_dielectric_transmission_width), far below the 5.6 degree cells
+        // of the pdf quadrature, which then integrates 0.198 of a pdf that samples 0.99998.
+        {"rough_dielectric_relative_ior",
+         [] {
+             OpenPBR_ResolvedInputs i = defaults();
+             i.transmission_weight = 1.0f;
+             i.specular_roughness = 0.5f;
+             return i;
+         },
+         {Side::outside, Side::inside},
+         {0.67f, 1.0f, 1.5f}},
+        // ... and in water: specular_ior = relative IOR x 1.33.
+        {"rough_dielectric_relative_ior_in_water",
+         [] {
+             OpenPBR_ResolvedInputs i = defaults();
+             i.transmission_weight = 1.0f;
+             i.specular_roughness = 0.5f;
+             return i;
+         },
+         {Side::outside, Side::inside},
+         {0.67f * 1.33f, 1.33f, 1.5f * 1.33f},
+         1.33f},
         {"smooth_glass",
          [] {
              OpenPBR_ResolvedInputs i = defaults();
@@ -294,7 +320,11 @@ constexpr std::uint64_t kPdfIntegralSamples = 400000;
 class BsdfStatistics : public ::testing::TestWithParam<StatisticsCase>
 {
 protected:
-    OpenPBR_PreparedBsdf prepare() const { return openpbr_prepare(GetParam().inputs(), GetParam().view_world()); }
+    OpenPBR_PreparedBsdf prepare() const
+    {
+        return openpbr_prepare(GetParam().inputs(), GetParam().view_world(), OPENPBR_DEFAULT_RGB_WAVELENGTHS_NM,
+                               GetParam().config->exterior_ior);
+    }
     std::string context() const
     {
         return GetParam().name() + "\n  inputs: " + describe_inputs(GetParam().inputs()) +
