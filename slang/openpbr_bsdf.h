@@ -546,6 +546,11 @@ OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare_lobes_of(OPENPBR_IN(OpenPBR_Re
     vec3 diffuse_color = inputs.base_color;
     vec3 transmission_weight = vec3(0.0f);
     vec3 thin_transmission_weight = vec3(0.0f);
+    // The albedo the coat's darkening sees of the slabs light enters (spec "Coat", darkening:
+    // E_b is "the albedos of the base slabs blended by their weights"): the subsurface slab
+    // returns subsurface_color (spec "Subsurface": its multiple-scattering albedo), the
+    // translucent slab its tint. The lobe itself refracts untinted; the medium applies the color.
+    vec3 entering_slab_albedo = vec3(0.0f);
     const float entering = dielectric_weight * (translucent + subsurface);
     if (thin_walled && entering > 0.0f)
     {
@@ -577,6 +582,8 @@ OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare_lobes_of(OPENPBR_IN(OpenPBR_Re
         // is no medium, spec "Translucent base") and subsurface (the medium does the rest).
         const vec3 translucent_tint = inputs.transmission_depth > 0.0f ? vec3(1.0f) : inputs.transmission_color;
         transmission_weight = under_specular * dielectric_weight * (translucent * translucent_tint + vec3(subsurface));
+        entering_slab_albedo =
+            under_specular * dielectric_weight * (translucent * translucent_tint + subsurface * inputs.subsurface_color);
         // A delta lobe refracts exactly 1 - F: no compensation (the table near alpha = 0 smears
         // the step at the critical angle when eta < 1 and gained up to 115 % there).
         const float transmission_compensation =
@@ -627,7 +634,7 @@ OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare_lobes_of(OPENPBR_IN(OpenPBR_Re
     {
         const vec3 base_albedo =
             openpbr_saturate(specular_estimate + diffuse_estimate + metal_albedo + diffuse_transmission_estimate +
-                             transmission_estimate + thin_transmission_estimate);
+                             entering_slab_albedo + thin_transmission_estimate);
         const float k_specular = openpbr_fresnel_dielectric(coat_mu, coat_eta);
         const float k_rough = 1.0f - (1.0f - openpbr_average_fresnel(coat_eta)) * bsdf.coat_inverse_eta_squared;
         const float specular_f0 = openpbr_dielectric_f0(eta_base);

@@ -22,6 +22,10 @@ enum class FurnaceExpectation
     // Only albedo <= 1.005 at every angle (white but lossy configurations, e.g. the default
     // material, whose base_color 0.8 absorbs).
     no_energy_gain,
+    // The relative-IOR sweep (white dielectric interfaces at every relative IOR, index-matched
+    // included): albedo in [0.99, 1.005] at view cos >= 0.1, in [0.97, 1.005] at cos >= 0.02;
+    // closer to grazing only the 1.005 bound.
+    relative_ior_sweep,
 };
 
 enum class FurnaceSide
@@ -36,6 +40,8 @@ struct FurnaceConfig
     OpenPBR_ResolvedInputs inputs;
     FurnaceExpectation expectation = FurnaceExpectation::energy_conserving;
     std::vector<FurnaceSide> sides = {FurnaceSide::outside};
+    // IOR of the medium around the surface (openpbr_prepare's exterior_ior), e.g. 1.33 in water.
+    float exterior_ior = 1.0f;
 };
 
 // The specification's list (white metal; white dielectric with diffuse, subsurface and
@@ -52,6 +58,17 @@ constexpr double furnace_tolerance = 0.005;   // |1 - albedo| for cos >= furnace
 constexpr double furnace_tolerance_min_cos = 0.1;
 constexpr double furnace_max_albedo = 1.005;  // at every angle
 
+// The relative IORs of the sweep, e.g. 0.67 (glass seen from inside) to 3, 1 included.
+const std::vector<float>& furnace_relative_iors();
+
+// Lowest albedo the expectation accepts at view cosine cos_theta (0 where only the no-gain
+// bound applies).
+double furnace_min_albedo(FurnaceExpectation expectation, float cos_theta);
+
+// Whether one channel's estimate meets the expectation: a gain counts only beyond three
+// standard errors of the estimate (albedo - 3 se > furnace_max_albedo), a loss likewise.
+bool furnace_albedo_passes(FurnaceExpectation expectation, float cos_theta, double albedo, double standard_error);
+
 // The world-space view of a configuration at local cosine `cos_theta` (azimuth fixed so
 // anisotropic configurations see an oblique azimuth), from the given side.
 vec3 furnace_view(const OpenPBR_ResolvedInputs& inputs, float cos_theta, FurnaceSide side);
@@ -67,7 +84,7 @@ struct FurnaceEstimate
 // Mean of openpbr_sample weights (diffuse + specular, delta samples included, no sample = 0)
 // from `samples` independent samples (PCG32 streams, TBB-parallel, deterministic per seed).
 FurnaceEstimate estimate_furnace_albedo(const OpenPBR_ResolvedInputs& inputs, const vec3& view_world,
-                                        std::uint64_t samples, std::uint64_t seed);
+                                        std::uint64_t samples, std::uint64_t seed, float exterior_ior = 1.0f);
 
 struct FurnaceOptions
 {

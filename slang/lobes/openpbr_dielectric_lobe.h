@@ -14,6 +14,24 @@
 // applies it itself. With it, a white dielectric conserves energy (spec "White furnace").
 //   f_T |cos_i| = eta^2 |i.h| |o.h| (1 - F) D G2 / (|o.n| (eta i.h + o.h)^2)
 //   pdf_T       = P_T G1(o) |o.h| D / |o.n| * eta^2 |i.h| / (eta i.h + o.h)^2
+//
+// Near eta = 1 the refracted lobe collapses. To first order in d = eta - 1, the direction
+// refracted through a microfacet h is t = -o + d (o - h / (o.h)) (Snell's law expanded), a
+// deviation of |d| tan(theta_oh) from the straight-through -o; as the visible normals spread by
+// alpha around a mean at cosine about sqrt(mu^2 + alpha^2) from the view, the transmitted lobe
+// is about
+//   w_T = |1 - 1/eta| alpha / (mu^2 + alpha^2)
+// wide (radians), and at eta = 1 every microfacet sends the light straight on (t = -o): the BTDF
+// is a delta, the Walter half vector o + eta t vanishes, and eval cannot resolve the lobe from
+// the light direction alone. Below w_T = OPENPBR_DELTA_ALPHA_THRESHOLD, the width at which a
+// GGX reflection lobe is already treated as a mirror, transmission is therefore a delta event:
+// the sample is drawn exactly as for the rough lobe (visible normal, then Snell's law through
+// it), but its weight is the microfacet estimator itself, (1 - F) G2 / G1 / P_T = G2 / G1,
+// instead of eval / pdf. The estimator's mean is the rough lobe's transmission albedo on both
+// sides of the switch, so the energy does not jump there, and at eta = 1 it is the delta
+// pass-through t = -o with weight G2(o, -o) / G1(o) = (1 + Lambda) / (1 + 2 Lambda), which the
+// compensation 1 / E_T0 (E_T0 of eta = 1 is that same value) turns into 1. Reflection keeps its
+// rough lobe: at grazing views the Fresnel factor of a nearly index-matched interface is large.
 #ifndef OPENPBR_DIELECTRIC_LOBE_H
 #define OPENPBR_DIELECTRIC_LOBE_H
 
@@ -33,6 +51,7 @@ struct OpenPBR_DielectricLobe
     vec3 transmission_weight;  // multiplies the BTDF (including compensation and tint)
     vec2 alpha;
     bool is_delta;
+    bool transmission_is_delta;  // is_delta, or the refracted lobe narrower than the delta threshold
     bool with_fresnel;         // false: transmission-only form, the (1 - F) factor is 1
     bool dispersive;           // eta differs per channel
     vec3 eta;                  // n_below / n_above, per channel
@@ -40,6 +59,15 @@ struct OpenPBR_DielectricLobe
     float g1_view;
     uint lobe_id;
 };
+
+// Width w_T (radians) of the refracted lobe at view cosine mu (see the header): |1 - 1/eta|
+// alpha / (mu^2 + alpha^2), the widest channel for a dispersive eta.
+OPENPBR_FUNC float openpbr_dielectric_transmission_width(vec2 alpha, vec3 eta, float mu)
+{
+    const float alpha_max = max(alpha.x, alpha.y);
+    const vec3 deviation = abs(vec3(1.0f) - vec3(1.0f) / eta);
+    return max(deviation.x, max(deviation.y, deviation.z)) * alpha_max / (mu * mu + alpha_max * alpha_max);
+}
 
 OPENPBR_FUNC OpenPBR_DielectricLobe openpbr_dielectric_lobe_init(vec3 reflection_weight, vec3 transmission_weight,
                                                                  vec2 alpha, vec3 eta, bool with_fresnel,
@@ -50,6 +78,8 @@ OPENPBR_FUNC OpenPBR_DielectricLobe openpbr_dielectric_lobe_init(vec3 reflection
     lobe.transmission_weight = transmission_weight;
     lobe.alpha = alpha;
     lobe.is_delta = openpbr_ggx_is_delta(alpha);
+    lobe.transmission_is_delta =
+        lobe.is_delta || openpbr_dielectric_transmission_width(alpha, eta, view.z) < OPENPBR_DELTA_ALPHA_THRESHOLD;
     lobe.with_fresnel = with_fresnel;
     lobe.dispersive = !(eta.x == eta.y && eta.y == eta.z);
     lobe.eta = eta;
@@ -92,6 +122,11 @@ OPENPBR_FUNC vec2 openpbr_dielectric_lobe_channel(OPENPBR_IN(OpenPBR_DielectricL
         const float f = openpbr_fresnel_dielectric(dot(view, h), eta);
         const float pdf = f * d * (0.25f * g1_over_cos_view);
         return vec2(pdf * g2_over_g1, pdf);
+    }
+    // A transmission narrower than the delta threshold is a delta event (header): not seen here.
+    if (lobe.transmission_is_delta)
+    {
+        return vec2(0.0f);
     }
     // Transmission: generalized half vector, oriented to the upper hemisphere.
     vec3 h = view + light * eta;
@@ -164,7 +199,8 @@ OPENPBR_FUNC OpenPBR_LobeSample openpbr_dielectric_lobe_sample(OPENPBR_IN(OpenPB
     const float o_dot_h = dot(view, h);
     const float f = lobe.with_fresnel ? openpbr_fresnel_dielectric(o_dot_h, eta) : 0.0f;
     const bool reflects = choice >= openpbr_dielectric_transmission_probability(lobe, f);
-    const uint kind = lobe.is_delta ? OPENPBR_LOBE_TYPE_SPECULAR : OPENPBR_LOBE_TYPE_GLOSSY;
+    const bool delta_event = reflects ? lobe.is_delta : lobe.transmission_is_delta;
+    const uint kind = delta_event ? OPENPBR_LOBE_TYPE_SPECULAR : OPENPBR_LOBE_TYPE_GLOSSY;
     vec3 light;
     if (reflects)
     {
@@ -185,15 +221,20 @@ OPENPBR_FUNC OpenPBR_LobeSample openpbr_dielectric_lobe_sample(OPENPBR_IN(OpenPB
     }
     OpenPBR_LobeSample lobe_sample = openpbr_make_lobe_sample(
         light, openpbr_lobe_type(lobe.lobe_id, kind | (reflects ? OPENPBR_LOBE_TYPE_REFLECTION : OPENPBR_LOBE_TYPE_TRANSMISSION)));
-    if (lobe.is_delta)
+    if (delta_event)
     {
         // Delta: the chosen branch carries F or (1 - F) over its probability, i.e. exactly 1
-        // per branch; a dispersive delta only lights the sampled channel (times 3 for its 1/3).
+        // per branch, times the shadowing G2 / G1 of the transmitted direction where the
+        // microfacets are rough (a collapsed refraction lobe, see the header); a dispersive
+        // delta only lights the sampled channel (times 3 for its 1/3).
         const vec3 weight = reflects ? lobe.reflection_weight : lobe.transmission_weight;
         const vec3 channel_mask = lobe.dispersive ? vec3(channel == 0 ? 3.0f : 0.0f, channel == 1 ? 3.0f : 0.0f,
                                                          channel == 2 ? 3.0f : 0.0f)
                                                   : vec3(1.0f);
-        lobe_sample.delta_weight = weight * channel_mask;
+        const float shadowing = lobe.is_delta ? 1.0f
+                                              : (1.0f + lobe.lambda_view) /
+                                                    (1.0f + lobe.lambda_view + openpbr_ggx_lambda(light, lobe.alpha));
+        lobe_sample.delta_weight = weight * (channel_mask * shadowing);
     }
     return lobe_sample;
 }

@@ -25,6 +25,6 @@ void main()
 {
     if (gl_GlobalInvocationID.x < conformance_parameters[0])
     {
-        openpbr_conformance_run_query(gl_GlobalInvocationID.x);
+        openpbr_conformance_run_query(gl_GlobalInvocationID.x, conformance_parameters[1]);
     }
 }

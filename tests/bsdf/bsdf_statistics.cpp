@@ -180,7 +180,10 @@ double delta_selection_probability(const OpenPBR_PreparedBsdf& bsdf)
     probability += bsdf.coat.is_delta ? bsdf.probability_coat : 0.0f;
     probability += bsdf.specular.is_delta ? bsdf.probability_specular : 0.0f;
     probability += bsdf.metal.is_delta ? bsdf.probability_metal : 0.0f;
-    probability += bsdf.transmission.is_delta ? bsdf.probability_transmission : 0.0f;
+    // The dielectric lobe's transmission is a delta also where its refracted lobe collapses
+    // (eta near 1); every sample of it is then delta only where every microfacet transmits
+    // (eta = 1 exactly, the cases that use this), otherwise reflections are mixed in.
+    probability += bsdf.transmission.transmission_is_delta ? bsdf.probability_transmission : 0.0f;
     probability += bsdf.thin_transmission.is_delta ? bsdf.probability_thin_transmission : 0.0f;
     return probability;
 }

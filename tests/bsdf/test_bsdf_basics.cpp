@@ -456,3 +456,29 @@ TEST(BsdfBasis, PreparedBasisIsOrthonormalForDegenerateGeometry)
 }
 
 }  // namespace
+
+// Coat darkening over a subsurface base (spec "Coat", darkening: E_b is the albedos of the base
+// slabs blended by their weights; the subsurface slab's albedo is subsurface_color): a colored
+// subsurface base is darkened more than a white one, its darker channels more, and not at all
+// with coat_darkening 0.
+TEST(BsdfBasics, CoatDarkeningSeesTheSubsurfaceColor)
+{
+    auto pearl = [](glm::vec3 subsurface_color, float coat_darkening) {
+        OpenPBR_ResolvedInputs inputs = openpbr_make_default_resolved_inputs();
+        inputs.subsurface_weight = 1.0f;
+        inputs.subsurface_color = subsurface_color;
+        inputs.coat_weight = 1.0f;
+        inputs.coat_ior = 1.68f;
+        inputs.coat_darkening = coat_darkening;
+        inputs.thin_film_weight = 1.0f;
+        return openpbr_prepare(inputs, glm::normalize(glm::vec3(0.3f, 0.1f, 0.9f))).under_coat_transmitted;
+    };
+    const glm::vec3 colored = pearl(glm::vec3(0.78f, 0.75f, 0.71f), 1.0f);
+    const glm::vec3 white = pearl(glm::vec3(1.0f), 1.0f);
+    EXPECT_LT(colored.x, white.x * 0.99f);
+    EXPECT_LT(colored.z, colored.x);
+    const glm::vec3 colored_undarkened = pearl(glm::vec3(0.78f, 0.75f, 0.71f), 0.0f);
+    const glm::vec3 white_undarkened = pearl(glm::vec3(1.0f), 0.0f);
+    EXPECT_EQ(colored_undarkened.x, white_undarkened.x);
+    EXPECT_EQ(colored_undarkened.z, white_undarkened.z);
+}

