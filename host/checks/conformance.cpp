@@ -881,7 +881,19 @@ ConformanceReport run_conformance(const std::vector<Material>& materials, const 
             report.paths.push_back(skipped);
             continue;
         }
-        report.paths.push_back(run_gpu_path(path, *context, queries, materials, packed, cpu_results, options));
+        // A path the device cannot run (e.g. a texture format it lacks) is reported as not
+        // executed with the reason; the other paths' results are kept.
+        try
+        {
+            report.paths.push_back(run_gpu_path(path, *context, queries, materials, packed, cpu_results, options));
+        }
+        catch (const std::exception& error)
+        {
+            ConformancePathResult failed;
+            failed.name = path.name;
+            failed.note = error.what();
+            report.paths.push_back(failed);
+        }
     }
     // CUDA runs in its own program (built with nvcc); it says plainly when no device exists.
     const bool wants_cuda = std::find(wanted.begin(), wanted.end(), "cuda") != wanted.end() ||

@@ -705,7 +705,10 @@ struct MappedBuffer {
     void* mapped = nullptr;
     VkDeviceSize size = 0;
     // A sampled-image binding (BufferBinding::image_width > 0) has these instead of a buffer.
+    // The image lives in device-local memory with optimal tiling; `buffer` / `memory` are then
+    // its host-visible staging copy, moved into the image once before the first dispatch.
     VkImage image = VK_NULL_HANDLE;
+    VkDeviceMemory image_memory = VK_NULL_HANDLE;
     VkImageView view = VK_NULL_HANDLE;
     VkSampler sampler = VK_NULL_HANDLE;
 };
@@ -755,6 +758,7 @@ struct RunResources {
             if (buffer.sampler != VK_NULL_HANDLE) vkDestroySampler(device, buffer.sampler, nullptr);
             if (buffer.view != VK_NULL_HANDLE) vkDestroyImageView(device, buffer.view, nullptr);
             if (buffer.image != VK_NULL_HANDLE) vkDestroyImage(device, buffer.image, nullptr);
+            if (buffer.image_memory != VK_NULL_HANDLE) vkFreeMemory(device, buffer.image_memory, nullptr);
             if (buffer.buffer != VK_NULL_HANDLE) vkDestroyBuffer(device, buffer.buffer, nullptr);
             // Freeing mapped memory unmaps it implicitly.
             if (buffer.memory != VK_NULL_HANDLE) vkFreeMemory(device, buffer.memory, nullptr);
@@ -799,10 +803,12 @@ void allocate_mapped_memory(const ContextState& context, const VkMemoryRequireme
     check(vkAllocateMemory(context.device, &allocate_info, nullptr, &target.memory), "vkAllocateMemory");
 }
 
-// A sampled-image binding: a linear-tiled R32_SFLOAT image in host-visible memory written row
-// by row (at the driver's row pitch), its view and a bilinear clamp-to-edge sampler. Linear
-// tiling keeps the runner free of staging copies, as for buffers. The image is left in
-// VK_IMAGE_LAYOUT_PREINITIALIZED; run() moves it to SHADER_READ_ONLY_OPTIMAL.
+// A sampled-image binding: an optimal-tiled R32_SFLOAT image in device-local memory, its
+// host-visible staging buffer holding the floats tightly packed (x fastest, then y, then z),
+// its view and a bilinear clamp-to-edge sampler. Optimal tiling because GPUs need it: NVIDIA's
+// driver samples no linear-tiled 3D image (seen on an H100, driver 580), and linear 2D images
+// are only guaranteed, not fast. run() copies the staging buffer into the image and moves it to
+// SHADER_READ_ONLY_OPTIMAL once, before the first dispatch.
 void create_sampled_image(const ContextState& context, const BufferBinding& binding, MappedBuffer& target) {
     const VkDevice device = context.device;
     const VkFormat format = VK_FORMAT_R32_SFLOAT;
@@ -820,20 +826,19 @@ void create_sampled_image(const ContextState& context, const BufferBinding& bind
     vkGetPhysicalDeviceFormatProperties(context.physical_device, format, &format_properties);
     const VkFormatFeatureFlags needed =
         VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT | VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT;
-    if ((format_properties.linearTilingFeatures & needed) != needed) {
-        throw std::runtime_error(where + ": the device cannot sample linear-tiled R32_SFLOAT images "
-                                 "with bilinear filtering");
+    if ((format_properties.optimalTilingFeatures & needed) != needed) {
+        throw std::runtime_error(where + ": the device cannot sample R32_SFLOAT images with bilinear filtering");
     }
-    if (volume) {
-        // Linear tiling is guaranteed for 2D images only; a 3D one needs the device's word.
-        VkImageFormatProperties volume_properties{};
-        if (vkGetPhysicalDeviceImageFormatProperties(context.physical_device, format, VK_IMAGE_TYPE_3D,
-                                                     VK_IMAGE_TILING_LINEAR, VK_IMAGE_USAGE_SAMPLED_BIT, 0,
-                                                     &volume_properties) != VK_SUCCESS ||
-            volume_properties.maxExtent.depth < depth) {
-            throw std::runtime_error(where + ": the device cannot sample linear-tiled 3D R32_SFLOAT images of depth " +
-                                     std::to_string(depth));
-        }
+    const VkImageUsageFlags usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+    VkImageFormatProperties image_properties{};
+    if (vkGetPhysicalDeviceImageFormatProperties(context.physical_device, format,
+                                                 volume ? VK_IMAGE_TYPE_3D : VK_IMAGE_TYPE_2D,
+                                                 VK_IMAGE_TILING_OPTIMAL, usage, 0, &image_properties) != VK_SUCCESS ||
+        image_properties.maxExtent.width < binding.image_width ||
+        image_properties.maxExtent.height < binding.image_height || image_properties.maxExtent.depth < depth) {
+        throw std::runtime_error(where + ": the device cannot sample R32_SFLOAT images of " +
+                                 std::to_string(binding.image_width) + " x " + std::to_string(binding.image_height) +
+                                 " x " + std::to_string(depth));
     }
     VkImageCreateInfo image_info{};
     image_info.sType = VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO;
@@ -843,29 +848,33 @@ void create_sampled_image(const ContextState& context, const BufferBinding& bind
     image_info.mipLevels = 1;
     image_info.arrayLayers = 1;
     image_info.samples = VK_SAMPLE_COUNT_1_BIT;
-    image_info.tiling = VK_IMAGE_TILING_LINEAR;
-    image_info.usage = VK_IMAGE_USAGE_SAMPLED_BIT;
+    image_info.tiling = VK_IMAGE_TILING_OPTIMAL;
+    image_info.usage = usage;
     image_info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
-    image_info.initialLayout = VK_IMAGE_LAYOUT_PREINITIALIZED;
+    image_info.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
     check(vkCreateImage(device, &image_info, nullptr, &target.image), "vkCreateImage");
+    VkMemoryRequirements image_requirements{};
+    vkGetImageMemoryRequirements(device, target.image, &image_requirements);
+    VkMemoryAllocateInfo image_allocate{};
+    image_allocate.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO;
+    image_allocate.allocationSize = image_requirements.size;
+    image_allocate.memoryTypeIndex = find_device_memory_type(context, image_requirements.memoryTypeBits);
+    check(vkAllocateMemory(device, &image_allocate, nullptr, &target.image_memory), "vkAllocateMemory");
+    check(vkBindImageMemory(device, target.image, target.image_memory, 0), "vkBindImageMemory");
 
-    VkMemoryRequirements requirements{};
-    vkGetImageMemoryRequirements(device, target.image, &requirements);
-    allocate_mapped_memory(context, requirements, target);
-    check(vkBindImageMemory(device, target.image, target.memory, 0), "vkBindImageMemory");
+    VkBufferCreateInfo staging_info{};
+    staging_info.sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO;
+    staging_info.size = binding.data->size();
+    staging_info.usage = VK_BUFFER_USAGE_TRANSFER_SRC_BIT;
+    staging_info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
+    check(vkCreateBuffer(device, &staging_info, nullptr, &target.buffer), "vkCreateBuffer");
+    VkMemoryRequirements staging_requirements{};
+    vkGetBufferMemoryRequirements(device, target.buffer, &staging_requirements);
+    allocate_mapped_memory(context, staging_requirements, target);
+    check(vkBindBufferMemory(device, target.buffer, target.memory, 0), "vkBindBufferMemory");
     check(vkMapMemory(device, target.memory, 0, VK_WHOLE_SIZE, 0, &target.mapped), "vkMapMemory");
-    target.size = requirements.size;
-
-    const VkImageSubresource subresource{VK_IMAGE_ASPECT_COLOR_BIT, 0, 0};
-    VkSubresourceLayout layout{};
-    vkGetImageSubresourceLayout(device, target.image, &subresource, &layout);
-    for (uint32_t slice = 0; slice < depth; ++slice) {
-        for (uint32_t row = 0; row < binding.image_height; ++row) {
-            std::memcpy(static_cast<std::byte*>(target.mapped) + layout.offset + slice * layout.depthPitch +
-                            row * layout.rowPitch,
-                        binding.data->data() + (std::size_t(slice) * binding.image_height + row) * row_bytes, row_bytes);
-        }
-    }
+    target.size = binding.data->size();
+    std::memcpy(target.mapped, binding.data->data(), binding.data->size());
 
     VkImageViewCreateInfo view_info{};
     view_info.sType = VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO;
@@ -1128,23 +1137,29 @@ DispatchTiming run(ComputePipeline& pipeline, const std::vector<BufferBinding>& 
     fence_info.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO;
     check(vkCreateFence(device, &fence_info, nullptr, &resources.fence), "vkCreateFence");
 
-    // Images leave PREINITIALIZED (written by the host) for SHADER_READ_ONLY_OPTIMAL once, in a
-    // submission of their own: the dispatch command buffer is submitted `repeats` times and
-    // must not repeat a transition out of a layout the image has already left.
-    std::vector<VkImageMemoryBarrier> image_barriers;
+    // Images are filled from their staging buffers and moved to SHADER_READ_ONLY_OPTIMAL once,
+    // in a submission of their own: the dispatch command buffer is submitted `repeats` times
+    // and must not repeat a transition out of a layout the image has already left.
+    std::vector<VkImageMemoryBarrier> image_barriers;  // UNDEFINED -> TRANSFER_DST_OPTIMAL
+    std::vector<VkImageMemoryBarrier> image_read_barriers;  // TRANSFER_DST -> SHADER_READ_ONLY
     for (const MappedBuffer& resource : resources.buffers) {
         if (resource.image == VK_NULL_HANDLE) continue;
         VkImageMemoryBarrier barrier{};
         barrier.sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER;
-        barrier.srcAccessMask = VK_ACCESS_HOST_WRITE_BIT;
-        barrier.dstAccessMask = VK_ACCESS_SHADER_READ_BIT;
-        barrier.oldLayout = VK_IMAGE_LAYOUT_PREINITIALIZED;
-        barrier.newLayout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+        barrier.srcAccessMask = 0;
+        barrier.dstAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+        barrier.oldLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+        barrier.newLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
         barrier.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
         barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
         barrier.image = resource.image;
         barrier.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
         image_barriers.push_back(barrier);
+        barrier.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+        barrier.dstAccessMask = VK_ACCESS_SHADER_READ_BIT;
+        barrier.oldLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
+        barrier.newLayout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+        image_read_barriers.push_back(barrier);
     }
     if (!image_barriers.empty() || request.device_local) {
         check(vkAllocateCommandBuffers(device, &command_info, &resources.setup_command_buffer),
@@ -1167,8 +1182,21 @@ DispatchTiming run(ComputePipeline& pipeline, const std::vector<BufferBinding>& 
         }
         if (!image_barriers.empty()) {
             vkCmdPipelineBarrier(resources.setup_command_buffer, VK_PIPELINE_STAGE_HOST_BIT,
-                                 VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 0, nullptr, 0, nullptr,
+                                 VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0, nullptr, 0, nullptr,
                                  static_cast<uint32_t>(image_barriers.size()), image_barriers.data());
+            for (std::size_t index = 0; index < buffers.size(); ++index) {
+                const MappedBuffer& resource = resources.buffers[index];
+                if (resource.image == VK_NULL_HANDLE) continue;
+                VkBufferImageCopy region{};
+                region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+                region.imageExtent = {buffers[index].image_width, buffers[index].image_height,
+                                      std::max(buffers[index].image_depth, 1u)};
+                vkCmdCopyBufferToImage(resources.setup_command_buffer, resource.buffer, resource.image,
+                                       VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
+            }
+            vkCmdPipelineBarrier(resources.setup_command_buffer, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                                 VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 0, nullptr, 0, nullptr,
+                                 static_cast<uint32_t>(image_read_barriers.size()), image_read_barriers.data());
         }
         check(vkEndCommandBuffer(resources.setup_command_buffer), "vkEndCommandBuffer");
         VkSubmitInfo setup_submit{};

@@ -74,9 +74,15 @@ TEST(ParameterTable, DefaultsAreTheTables)
     EXPECT_EQ(defaults.name, glm::vec3(default_r, default_g, default_b)) << #name;
 #define CHECK_VECTOR2(name, default_x, default_y) EXPECT_EQ(defaults.name, glm::vec2(default_x, default_y)) << #name;
 #define CHECK_BOOL(name, default_value) EXPECT_EQ(defaults.name, default_value) << #name;
-#define CHECK_BASIS(name, normal_input, tangent_input)                         \
-    EXPECT_EQ(defaults.name.normal, glm::vec3(0.0f, 0.0f, 1.0f)) << #name;     \
-    EXPECT_EQ(defaults.name.tangent, glm::vec3(1.0f, 0.0f, 0.0f)) << #name;
+// geometry_basis defaults to the +z frame; geometry_coat_basis to all zero, "follow the base
+// frame" (resolved by the input contract, slang/openpbr_resolved_inputs.h).
+#define CHECK_BASIS(name, normal_input, tangent_input)                                                  \
+    EXPECT_EQ(defaults.name.normal, std::string(#name) == "geometry_coat_basis" ? glm::vec3(0.0f)      \
+                                                                                : glm::vec3(0.0f, 0.0f, 1.0f)) \
+        << #name;                                                                                       \
+    EXPECT_EQ(defaults.name.tangent, std::string(#name) == "geometry_coat_basis" ? glm::vec3(0.0f)     \
+                                                                                 : glm::vec3(1.0f, 0.0f, 0.0f)) \
+        << #name;
     OPENPBR_PARAMETERS(CHECK_FLOAT, CHECK_COLOR, CHECK_VECTOR2, CHECK_BOOL, CHECK_BASIS)
 #undef CHECK_FLOAT
 #undef CHECK_COLOR
@@ -237,6 +243,13 @@ TEST(ParameterTable, LoaderStoresEveryInputInItsField)
             // A tilted normal, or a tangent along +y: both change the basis they belong to.
             type = "vector3";
             value = vector->tangent ? "0, 1, 0" : "0.6, 0, 0.8";
+            // A file that sets any frame vector gets every basis from the file: the ones it
+            // leaves unset become the unperturbed frame (the coat's default "follow the base"
+            // applies only to files that set no frame at all).
+            for (const auto& other : openpbr::host::parameter_bases())
+            {
+                expected.*(other.field) = openpbr::openpbr_make_basis(glm::vec3(0.0f, 0.0f, 1.0f));
+            }
             openpbr::OpenPBR_Basis& basis = expected.*(openpbr::host::parameter_bases()[vector->basis].field);
             basis = vector->tangent ? openpbr::openpbr_make_basis(glm::vec3(0.0f, 0.0f, 1.0f), glm::vec3(0.0f, 1.0f, 0.0f), 1.0f)
                                     : openpbr::openpbr_make_basis(glm::vec3(0.6f, 0.0f, 0.8f));
