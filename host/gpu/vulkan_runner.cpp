@@ -792,6 +792,17 @@ uint32_t find_device_memory_type(const ContextState& context, const uint32_t all
     throw std::runtime_error("no DEVICE_LOCAL memory type for a buffer");
 }
 
+// Device-local memory for one buffer or image, from its requirements; the caller binds it.
+VkDeviceMemory allocate_device_memory(const ContextState& context, const VkMemoryRequirements& requirements) {
+    VkMemoryAllocateInfo allocate_info{};
+    allocate_info.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO;
+    allocate_info.allocationSize = requirements.size;
+    allocate_info.memoryTypeIndex = find_device_memory_type(context, requirements.memoryTypeBits);
+    VkDeviceMemory memory = VK_NULL_HANDLE;
+    check(vkAllocateMemory(context.device, &allocate_info, nullptr, &memory), "vkAllocateMemory");
+    return memory;
+}
+
 // Host-visible, coherent memory for one buffer or image (the same path for both); the caller
 // binds it (vkBindBufferMemory / vkBindImageMemory) and maps it.
 void allocate_mapped_memory(const ContextState& context, const VkMemoryRequirements& requirements,
@@ -855,11 +866,7 @@ void create_sampled_image(const ContextState& context, const BufferBinding& bind
     check(vkCreateImage(device, &image_info, nullptr, &target.image), "vkCreateImage");
     VkMemoryRequirements image_requirements{};
     vkGetImageMemoryRequirements(device, target.image, &image_requirements);
-    VkMemoryAllocateInfo image_allocate{};
-    image_allocate.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO;
-    image_allocate.allocationSize = image_requirements.size;
-    image_allocate.memoryTypeIndex = find_device_memory_type(context, image_requirements.memoryTypeBits);
-    check(vkAllocateMemory(device, &image_allocate, nullptr, &target.image_memory), "vkAllocateMemory");
+    target.image_memory = allocate_device_memory(context, image_requirements);
     check(vkBindImageMemory(device, target.image, target.image_memory, 0), "vkBindImageMemory");
 
     VkBufferCreateInfo staging_info{};
@@ -1003,11 +1010,7 @@ DispatchTiming run(ComputePipeline& pipeline, const std::vector<BufferBinding>& 
             check(vkCreateBuffer(device, &device_info, nullptr, &device_target.buffer), "vkCreateBuffer");
             VkMemoryRequirements device_requirements{};
             vkGetBufferMemoryRequirements(device, device_target.buffer, &device_requirements);
-            VkMemoryAllocateInfo device_allocate{};
-            device_allocate.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO;
-            device_allocate.allocationSize = device_requirements.size;
-            device_allocate.memoryTypeIndex = find_device_memory_type(context, device_requirements.memoryTypeBits);
-            check(vkAllocateMemory(device, &device_allocate, nullptr, &device_target.memory), "vkAllocateMemory");
+            device_target.memory = allocate_device_memory(context, device_requirements);
             check(vkBindBufferMemory(device, device_target.buffer, device_target.memory, 0), "vkBindBufferMemory");
             device_target.size = target.size;
         }
