@@ -30,9 +30,14 @@ consumer() {
   shift
   local consumer_start
   consumer_start=$(date +%s)
-  cmake -S "$repo_root/examples/$name" -B "$work_dir/$name" "${generator[@]}" -DCMAKE_BUILD_TYPE=Release \
-    -DCMAKE_PREFIX_PATH="$prefix" "$@" >/dev/null
-  cmake --build "$work_dir/$name" >/dev/null
+  # Configure and build quietly; on failure the whole log is printed (compiler errors included).
+  local log="$work_dir/$name.log"
+  if ! { cmake -S "$repo_root/examples/$name" -B "$work_dir/$name" "${generator[@]}" -DCMAKE_BUILD_TYPE=Release \
+           -DCMAKE_PREFIX_PATH="$prefix" "$@" && cmake --build "$work_dir/$name"; } >"$log" 2>&1; then
+    cat "$log" >&2
+    echo "ci_consumers: $name failed to configure or build" >&2
+    return 1
+  fi
   case "$name" in
     cpp_consumer) "$work_dir/$name/cpp_consumer" ;;
     *) cmake --build "$work_dir/$name" --target "run_$name" ;;

@@ -82,7 +82,7 @@ inline std::vector<OpenPBR_ResolvedInputs> make_materials()
     return materials;
 }
 
-// Packs materials with the field list of slang/openpbr_material_packing.h, in the order the
+// Packs materials with the parameter table of slang/openpbr_parameters.h, in the order the
 // kernels' openpbr_unpack_material reads them.
 inline std::vector<float> pack_materials(const std::vector<OpenPBR_ResolvedInputs>& materials)
 {
@@ -93,13 +93,13 @@ inline std::vector<float> pack_materials(const std::vector<OpenPBR_ResolvedInput
         std::size_t index = m * OPENPBR_PACKED_MATERIAL_FLOATS;
         auto put = [&](float value) { packed[index++] = value; };
         auto put3 = [&](const vec3& value) { put(value.x); put(value.y); put(value.z); };
-#define CONSUMER_PACK_FLOAT(name) put(material.name);
-#define CONSUMER_PACK_COLOR(name) put3(material.name);
-#define CONSUMER_PACK_VECTOR2(name) put(material.name.x); put(material.name.y);
-#define CONSUMER_PACK_BOOL(name) put(material.name ? 1.0f : 0.0f);
-#define CONSUMER_PACK_BASIS(name) put3(material.name.tangent); put3(material.name.bitangent); put3(material.name.normal);
-        OPENPBR_MATERIAL_FIELDS(CONSUMER_PACK_FLOAT, CONSUMER_PACK_COLOR, CONSUMER_PACK_VECTOR2, CONSUMER_PACK_BOOL,
-                                CONSUMER_PACK_BASIS)
+#define CONSUMER_PACK_FLOAT(name, default_value, low, high) put(material.name);
+#define CONSUMER_PACK_COLOR(name, default_r, default_g, default_b, low, high) put3(material.name);
+#define CONSUMER_PACK_VECTOR2(name, default_x, default_y) put(material.name.x); put(material.name.y);
+#define CONSUMER_PACK_BOOL(name, default_value) put(material.name ? 1.0f : 0.0f);
+#define CONSUMER_PACK_BASIS(name, normal_input, tangent_input) put3(material.name.tangent); put3(material.name.bitangent); put3(material.name.normal);
+        OPENPBR_PARAMETERS(CONSUMER_PACK_FLOAT, CONSUMER_PACK_COLOR, CONSUMER_PACK_VECTOR2, CONSUMER_PACK_BOOL,
+                           CONSUMER_PACK_BASIS)
 #undef CONSUMER_PACK_FLOAT
 #undef CONSUMER_PACK_COLOR
 #undef CONSUMER_PACK_VECTOR2
