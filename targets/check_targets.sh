@@ -17,24 +17,7 @@ OUT="${OPENPBR_TARGETS_DIR:?}"
 SRC="${OPENPBR_SOURCE_DIR:?}"
 GLSLANG="${GLSLANG_VALIDATOR:-glslangValidator}"
 NODE="${NODE:-node}"
-WORK="$(mktemp -d)"
-trap 'rm -rf "$WORK"' EXIT
-FAILURES=0
-PASSES=0
-
-run() { # run DESCRIPTION COMMAND...: prints ok/FAIL and the command's output on failure
-  local what="$1"
-  shift
-  if "$@" > "$WORK/log" 2>&1; then
-    echo "ok:   $what"
-    PASSES=$((PASSES + 1))
-  else
-    echo "FAIL: $what"
-    echo "      command: $*"
-    sed 's/^/      /' "$WORK/log" | head -40
-    FAILURES=$((FAILURES + 1))
-  fi
-}
+source "$SRC/targets/check_lib.sh"
 
 skip() { echo "skipped: $*"; exit 77; }
 

@@ -19,24 +19,7 @@ GLSLANG="${GLSLANG_VALIDATOR:-glslangValidator}"
 NODE="${NODE:-node}"
 CXX="${CXX_COMPILER:-c++}"
 HERE="$SRC/tests/api_compat"
-WORK="$(mktemp -d)"
-trap 'rm -rf "$WORK"' EXIT
-FAILURES=0
-PASSES=0
-
-run() { # run DESCRIPTION COMMAND...: ok if the command succeeds
-  local what="$1"
-  shift
-  if "$@" > "$WORK/log" 2>&1; then
-    echo "ok:   $what"
-    PASSES=$((PASSES + 1))
-  else
-    echo "FAIL: $what"
-    echo "      command: $*"
-    sed 's/^/      /' "$WORK/log" | head -30
-    FAILURES=$((FAILURES + 1))
-  fi
-}
+source "$SRC/targets/check_lib.sh"
 
 run_fails() { # run_fails DESCRIPTION PATTERN COMMAND...: ok if the command fails printing PATTERN
   local what="$1" pattern="$2"
