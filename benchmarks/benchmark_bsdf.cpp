@@ -98,21 +98,51 @@ void benchmark_pdf(benchmark::State& state, const OpenPBR_ResolvedInputs& inputs
     });
 }
 
+// One feature of the every-lobe material: its name and how it is switched on and off. The
+// per-feature cost table in docs/performance.md reads two rows per feature: "Only/<feature>"
+// (the default material plus that feature, as the every-lobe material sets it) against
+// "Default", and "Without/<feature>" (every lobe but that one) against "EveryLobe".
+struct Feature
+{
+    const char* name;
+    void (*switch_on)(OpenPBR_ResolvedInputs&);
+    void (*switch_off)(OpenPBR_ResolvedInputs&);
+};
+
+const Feature features[] = {
+    {"metal", [](OpenPBR_ResolvedInputs& m) { m.base_metalness = 0.3f; },
+     [](OpenPBR_ResolvedInputs& m) { m.base_metalness = 0.0f; }},
+    {"diffuse_roughness", [](OpenPBR_ResolvedInputs& m) { m.base_diffuse_roughness = 0.5f; },
+     [](OpenPBR_ResolvedInputs& m) { m.base_diffuse_roughness = 0.0f; }},
+    {"anisotropy", [](OpenPBR_ResolvedInputs& m) { m.specular_roughness_anisotropy = 0.5f; },
+     [](OpenPBR_ResolvedInputs& m) { m.specular_roughness_anisotropy = 0.0f; }},
+    {"transmission", [](OpenPBR_ResolvedInputs& m) { m.transmission_weight = 0.3f; },
+     [](OpenPBR_ResolvedInputs& m) { m.transmission_weight = 0.0f; }},
+    {"subsurface", [](OpenPBR_ResolvedInputs& m) { m.subsurface_weight = 0.3f; },
+     [](OpenPBR_ResolvedInputs& m) { m.subsurface_weight = 0.0f; }},
+    {"fuzz", [](OpenPBR_ResolvedInputs& m) { m.fuzz_weight = 0.3f; },
+     [](OpenPBR_ResolvedInputs& m) { m.fuzz_weight = 0.0f; }},
+    {"coat",
+     [](OpenPBR_ResolvedInputs& m) {
+         m.coat_weight = 0.5f;
+         m.coat_roughness = 0.2f;
+         m.coat_color = vec3(0.9f, 0.8f, 0.7f);
+     },
+     [](OpenPBR_ResolvedInputs& m) { m.coat_weight = 0.0f; }},
+    {"thin_film", [](OpenPBR_ResolvedInputs& m) { m.thin_film_weight = 0.5f; },
+     [](OpenPBR_ResolvedInputs& m) { m.thin_film_weight = 0.0f; }},
+    {"emission", [](OpenPBR_ResolvedInputs& m) { m.emission_luminance = 1.0f; },
+     [](OpenPBR_ResolvedInputs& m) { m.emission_luminance = 0.0f; }},
+};
+
 // A material with every lobe at partial weight: the most expensive configuration.
 OpenPBR_ResolvedInputs every_lobe_material()
 {
     OpenPBR_ResolvedInputs inputs = openpbr_make_default_resolved_inputs();
-    inputs.base_metalness = 0.3f;
-    inputs.base_diffuse_roughness = 0.5f;
-    inputs.specular_roughness_anisotropy = 0.5f;
-    inputs.transmission_weight = 0.3f;
-    inputs.subsurface_weight = 0.3f;
-    inputs.fuzz_weight = 0.3f;
-    inputs.coat_weight = 0.5f;
-    inputs.coat_roughness = 0.2f;
-    inputs.coat_color = vec3(0.9f, 0.8f, 0.7f);
-    inputs.thin_film_weight = 0.5f;
-    inputs.emission_luminance = 1.0f;
+    for (const Feature& feature : features)
+    {
+        feature.switch_on(inputs);
+    }
     return inputs;
 }
 
@@ -130,6 +160,15 @@ int main(int argc, char** argv)
 {
     register_material("Default", openpbr_make_default_resolved_inputs());
     register_material("EveryLobe", every_lobe_material());
+    for (const Feature& feature : features)
+    {
+        OpenPBR_ResolvedInputs only = openpbr_make_default_resolved_inputs();
+        feature.switch_on(only);
+        register_material(std::string("Only/") + feature.name, only);
+        OpenPBR_ResolvedInputs without = every_lobe_material();
+        feature.switch_off(without);
+        register_material(std::string("Without/") + feature.name, without);
+    }
     for (const openpbr::host::Material& material : openpbr::host::load_material_directory(OPENPBR_MATERIALS_DIR))
     {
         register_material(material.name, material.inputs);
