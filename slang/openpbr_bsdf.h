@@ -164,22 +164,29 @@ OPENPBR_FUNC OpenPBR_GgxLobeAlbedo openpbr_ggx_lobe_albedo(float roughness, floa
 // tabulated E_R (the ratio F_film / F_plain would magnify the tables' error).
 OPENPBR_FUNC vec3 openpbr_film_fresnel_change(OPENPBR_IN(OpenPBR_Fresnel) filmed, float eta, vec3 view, vec2 alpha)
 {
-    if (openpbr_ggx_is_delta(alpha))
-    {
-        return openpbr_fresnel_evaluate(filmed, view.z) - vec3(openpbr_fresnel_dielectric(view.z, eta));
-    }
-    const float lambda_view = openpbr_ggx_lambda(view, alpha);
+    // A mirror is one node at the view; the film is evaluated at one call site either way (GPU
+    // compilers inline every call, and the film is the largest function of the BSDF).
+    const bool is_delta = openpbr_ggx_is_delta(alpha);
+    const int node_count = is_delta ? 1 : 4;
+    const float lambda_view = is_delta ? 0.0f : openpbr_ggx_lambda(view, alpha);
     vec3 change = vec3(0.0f);
     float weight_sum = 0.0f;
-    for (int node = 0; node < 4; ++node)
+    for (int node = 0; node < node_count; ++node)
     {
-        const vec2 u = vec2(fract(0.5f + 0.618034f * float(node)), (float(node) + 0.5f) * 0.25f);
-        const vec3 microfacet = openpbr_sample_vndf_spherical_cap(view, alpha, u);
-        const float cos_microfacet = dot(view, microfacet);
-        const vec3 light = 2.0f * cos_microfacet * microfacet - view;
-        if (light.z > 0.0f)
+        float cos_microfacet = view.z;
+        float weight = 1.0f;
+        if (!is_delta)
         {
-            const float weight = (1.0f + lambda_view) / (1.0f + lambda_view + openpbr_ggx_lambda(light, alpha));
+            const vec2 u = vec2(fract(0.5f + 0.618034f * float(node)), (float(node) + 0.5f) * 0.25f);
+            const vec3 microfacet = openpbr_sample_vndf_spherical_cap(view, alpha, u);
+            cos_microfacet = dot(view, microfacet);
+            const vec3 light = 2.0f * cos_microfacet * microfacet - view;
+            weight = light.z > 0.0f
+                         ? (1.0f + lambda_view) / (1.0f + lambda_view + openpbr_ggx_lambda(light, alpha))
+                         : 0.0f;
+        }
+        if (weight > 0.0f)
+        {
             change += weight * (openpbr_fresnel_evaluate(filmed, cos_microfacet) -
                                 vec3(openpbr_fresnel_dielectric(cos_microfacet, eta)));
             weight_sum += weight;
@@ -815,21 +822,20 @@ OPENPBR_FUNC OpenPBR_DiffuseSpecular openpbr_eval(OPENPBR_IN(OpenPBR_PreparedBsd
     }
     if (OPENPBR_FEATURE_COAT && bsdf.probability_coat > 0.0f)
     {
-        value.specular = value.specular + openpbr_microfacet_reflection_lobe_eval(bsdf.coat, bsdf.coat_view,
-                                                                                  openpbr_to_local(bsdf.coat_basis, light_world));
+        // The coat carries no film (the film lies on the base): no film code here.
+        value.specular =
+            value.specular + openpbr_microfacet_reflection_lobe_eval_with(
+                                 bsdf.coat, bsdf.coat_view, openpbr_to_local(bsdf.coat_basis, light_world), false);
     }
     vec3 diffuse = vec3(0.0f);
     vec3 specular = vec3(0.0f);
     if (light.z >= 0.0f)
     {
-        if (bsdf.probability_specular > 0.0f)
-        {
-            specular = specular + openpbr_microfacet_reflection_lobe_eval(bsdf.specular, bsdf.view, light);
-        }
-        if (OPENPBR_FEATURE_METAL && bsdf.probability_metal > 0.0f)
-        {
-            specular = specular + openpbr_microfacet_reflection_lobe_eval(bsdf.metal, bsdf.view, light);
-        }
+        // The dielectric and metal lobes in one evaluation: one D, G2 and film for both.
+        specular = openpbr_microfacet_reflection_lobe_pair_eval(bsdf.specular, bsdf.probability_specular > 0.0f,
+                                                                bsdf.metal,
+                                                                OPENPBR_FEATURE_METAL && bsdf.probability_metal > 0.0f,
+                                                                bsdf.view, light);
         if (bsdf.probability_diffuse > 0.0f)
         {
             diffuse = openpbr_diffuse_lobe_eval(bsdf.diffuse, bsdf.view, light);
@@ -853,7 +859,7 @@ OPENPBR_FUNC OpenPBR_DiffuseSpecular openpbr_eval(OPENPBR_IN(OpenPBR_PreparedBsd
     }
     if (OPENPBR_FEATURE_THIN_WALLED && OPENPBR_FEATURE_TRANSMISSION && bsdf.probability_thin_transmission > 0.0f)
     {
-        specular = specular + openpbr_microfacet_reflection_lobe_eval(bsdf.thin_transmission, bsdf.view, light);
+        specular = specular + openpbr_microfacet_reflection_lobe_eval_with(bsdf.thin_transmission, bsdf.view, light, false);
     }
     if (OPENPBR_FEATURE_THIN_WALLED && OPENPBR_FEATURE_SUBSURFACE && bsdf.probability_diffuse_transmission > 0.0f)
     {
@@ -946,7 +952,7 @@ OPENPBR_FUNC OpenPBR_BsdfSample openpbr_sample(OPENPBR_IN(OpenPBR_PreparedBsdf) 
     }
     else if ((selector -= bsdf.probability_fuzz) < bsdf.probability_coat)
     {
-        lobe_sample = openpbr_microfacet_reflection_lobe_sample(bsdf.coat, bsdf.coat_view, u_direction);
+        lobe_sample = openpbr_microfacet_reflection_lobe_sample_with(bsdf.coat, bsdf.coat_view, u_direction, false);
         probability = bsdf.probability_coat;
         frame = bsdf.coat_basis;
         delta_factor = vec3(1.0f);
@@ -973,7 +979,7 @@ OPENPBR_FUNC OpenPBR_BsdfSample openpbr_sample(OPENPBR_IN(OpenPBR_PreparedBsdf) 
     }
     else if ((selector -= bsdf.probability_diffuse_transmission) < bsdf.probability_thin_transmission)
     {
-        lobe_sample = openpbr_microfacet_reflection_lobe_sample(bsdf.thin_transmission, bsdf.view, u_direction);
+        lobe_sample = openpbr_microfacet_reflection_lobe_sample_with(bsdf.thin_transmission, bsdf.view, u_direction, false);
         probability = bsdf.probability_thin_transmission;
     }
     else if (bsdf.probability_pass_through > 0.0f)

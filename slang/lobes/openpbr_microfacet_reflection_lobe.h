@@ -64,8 +64,12 @@ OPENPBR_FUNC OpenPBR_MicrofacetReflectionLobe openpbr_microfacet_reflection_lobe
     return lobe;
 }
 
-OPENPBR_FUNC vec3 openpbr_microfacet_reflection_lobe_eval(OPENPBR_IN(OpenPBR_MicrofacetReflectionLobe) lobe,
-                                                          vec3 view, vec3 light_direction)
+// with_film false where the caller knows the lobe's Fresnel factor carries no thin film (the
+// coat and the thin-walled transmission: spec "Thin-film iridescence" puts the film on the base
+// only): the film code is then not compiled into that call site (GPU compilers inline every
+// call, and the film is the largest function of the BSDF).
+OPENPBR_FUNC vec3 openpbr_microfacet_reflection_lobe_eval_with(OPENPBR_IN(OpenPBR_MicrofacetReflectionLobe) lobe,
+                                                               vec3 view, vec3 light_direction, bool with_film)
 {
     const vec3 light = vec3(light_direction.x, light_direction.y, light_direction.z * lobe.hemisphere_sign);
     if (lobe.is_delta || light.z <= 0.0f || view.z <= 0.0f)
@@ -75,8 +79,50 @@ OPENPBR_FUNC vec3 openpbr_microfacet_reflection_lobe_eval(OPENPBR_IN(OpenPBR_Mic
     const vec3 h = openpbr_safe_normalize(view + light, vec3(0.0f, 0.0f, 1.0f));
     const float d = openpbr_ggx_d(h, lobe.alpha);
     const float g2 = openpbr_ggx_g2(lobe.lambda_view, openpbr_ggx_lambda(light, lobe.alpha));
-    const vec3 f = openpbr_fresnel_evaluate(lobe.fresnel, dot(view, h));
+    const vec3 f = with_film ? openpbr_fresnel_evaluate(lobe.fresnel, dot(view, h))
+                             : openpbr_fresnel_evaluate_without_film(lobe.fresnel, dot(view, h));
     return lobe.weight * f * (d * g2 * lobe.inverse_4_cos_view);
+}
+
+OPENPBR_FUNC vec3 openpbr_microfacet_reflection_lobe_eval(OPENPBR_IN(OpenPBR_MicrofacetReflectionLobe) lobe,
+                                                          vec3 view, vec3 light_direction)
+{
+    return openpbr_microfacet_reflection_lobe_eval_with(lobe, view, light_direction, true);
+}
+
+// The base's dielectric and metal reflection lobes together (spec "Base Substrate": both follow
+// specular_roughness and specular_roughness_anisotropy, so they share alpha, the view terms and
+// the half vector): the sum of both lobes' eval, with D, G2 and the film's harmonics computed
+// once. An inactive lobe adds nothing; the geometry is taken from an active one. Both are
+// reflection lobes (hemisphere_sign +1).
+OPENPBR_FUNC vec3 openpbr_microfacet_reflection_lobe_pair_eval(OPENPBR_IN(OpenPBR_MicrofacetReflectionLobe) dielectric,
+                                                               bool dielectric_active,
+                                                               OPENPBR_IN(OpenPBR_MicrofacetReflectionLobe) metal,
+                                                               bool metal_active, vec3 view, vec3 light)
+{
+    const bool is_delta = dielectric_active ? dielectric.is_delta : metal.is_delta;
+    if (!(dielectric_active || metal_active) || is_delta || light.z <= 0.0f || view.z <= 0.0f)
+    {
+        return vec3(0.0f);
+    }
+    const vec2 alpha = dielectric_active ? dielectric.alpha : metal.alpha;
+    const float lambda_view = dielectric_active ? dielectric.lambda_view : metal.lambda_view;
+    const float inverse_4_cos_view = dielectric_active ? dielectric.inverse_4_cos_view : metal.inverse_4_cos_view;
+    const vec3 h = openpbr_safe_normalize(view + light, vec3(0.0f, 0.0f, 1.0f));
+    const float d = openpbr_ggx_d(h, alpha);
+    const float g2 = openpbr_ggx_g2(lambda_view, openpbr_ggx_lambda(light, alpha));
+    const OpenPBR_FresnelPair f =
+        openpbr_fresnel_evaluate_base_pair(dielectric.fresnel, dielectric_active, metal.fresnel, metal_active, dot(view, h));
+    vec3 value = vec3(0.0f);
+    if (dielectric_active)
+    {
+        value = dielectric.weight * f.first;
+    }
+    if (metal_active)
+    {
+        value += metal.weight * f.second;
+    }
+    return value * (d * g2 * inverse_4_cos_view);
 }
 
 OPENPBR_FUNC float openpbr_microfacet_reflection_lobe_pdf(OPENPBR_IN(OpenPBR_MicrofacetReflectionLobe) lobe,
@@ -92,8 +138,9 @@ OPENPBR_FUNC float openpbr_microfacet_reflection_lobe_pdf(OPENPBR_IN(OpenPBR_Mic
     return openpbr_vndf_reflection_pdf(view, h, lobe.alpha, lobe.g1_view, lobe.inverse_4_cos_view);
 }
 
-OPENPBR_FUNC OpenPBR_LobeSample openpbr_microfacet_reflection_lobe_sample(
-    OPENPBR_IN(OpenPBR_MicrofacetReflectionLobe) lobe, vec3 view, vec2 u)
+// with_film as for openpbr_microfacet_reflection_lobe_eval_with (the mirror's weight).
+OPENPBR_FUNC OpenPBR_LobeSample openpbr_microfacet_reflection_lobe_sample_with(
+    OPENPBR_IN(OpenPBR_MicrofacetReflectionLobe) lobe, vec3 view, vec2 u, bool with_film)
 {
     if (view.z <= 0.0f)
     {
@@ -105,7 +152,8 @@ OPENPBR_FUNC OpenPBR_LobeSample openpbr_microfacet_reflection_lobe_sample(
         OpenPBR_LobeSample mirror = openpbr_make_lobe_sample(
             vec3(-view.x, -view.y, view.z * lobe.hemisphere_sign),
             openpbr_lobe_type(lobe.lobe_id, side | OPENPBR_LOBE_TYPE_SPECULAR));
-        mirror.delta_weight = lobe.weight * openpbr_fresnel_evaluate(lobe.fresnel, view.z);
+        mirror.delta_weight = lobe.weight * (with_film ? openpbr_fresnel_evaluate(lobe.fresnel, view.z)
+                                                       : openpbr_fresnel_evaluate_without_film(lobe.fresnel, view.z));
         return mirror;
     }
     const vec3 h = openpbr_sample_vndf_reflection(view, lobe.alpha, u);
@@ -116,6 +164,12 @@ OPENPBR_FUNC OpenPBR_LobeSample openpbr_microfacet_reflection_lobe_sample(
     }
     return openpbr_make_lobe_sample(vec3(light.x, light.y, light.z * lobe.hemisphere_sign),
                                     openpbr_lobe_type(lobe.lobe_id, side | OPENPBR_LOBE_TYPE_GLOSSY));
+}
+
+OPENPBR_FUNC OpenPBR_LobeSample openpbr_microfacet_reflection_lobe_sample(OPENPBR_IN(OpenPBR_MicrofacetReflectionLobe) lobe,
+                                                                         vec3 view, vec2 u)
+{
+    return openpbr_microfacet_reflection_lobe_sample_with(lobe, view, u, true);
 }
 
 OPENPBR_NAMESPACE_END

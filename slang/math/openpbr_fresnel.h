@@ -139,15 +139,30 @@ OPENPBR_FUNC OpenPBR_Fresnel openpbr_add_thin_film(OPENPBR_IN(OpenPBR_Fresnel) f
     return filmed;
 }
 
+// The Fresnel factor without its film and tint (1 for OPENPBR_FRESNEL_NONE).
+OPENPBR_FUNC vec3 openpbr_fresnel_plain(OPENPBR_IN(OpenPBR_Fresnel) fresnel, float cos_theta)
+{
+    if (fresnel.kind == OPENPBR_FRESNEL_NONE)
+    {
+        return vec3(1.0f);
+    }
+    return fresnel.kind == OPENPBR_FRESNEL_F82 ? openpbr_fresnel_f82(fresnel.f0, fresnel.f82_coefficient, cos_theta)
+                                               : vec3(openpbr_fresnel_dielectric(cos_theta, fresnel.eta));
+}
+
+// The factor of a Fresnel struct known to carry no film (film_weight 0), without the film code.
+OPENPBR_FUNC vec3 openpbr_fresnel_evaluate_without_film(OPENPBR_IN(OpenPBR_Fresnel) fresnel, float cos_theta)
+{
+    return fresnel.kind == OPENPBR_FRESNEL_NONE ? fresnel.tint : fresnel.tint * openpbr_fresnel_plain(fresnel, cos_theta);
+}
+
 OPENPBR_FUNC vec3 openpbr_fresnel_evaluate(OPENPBR_IN(OpenPBR_Fresnel) fresnel, float cos_theta)
 {
     if (fresnel.kind == OPENPBR_FRESNEL_NONE)
     {
         return fresnel.tint;
     }
-    const vec3 plain = fresnel.kind == OPENPBR_FRESNEL_F82
-                           ? openpbr_fresnel_f82(fresnel.f0, fresnel.f82_coefficient, cos_theta)
-                           : vec3(openpbr_fresnel_dielectric(cos_theta, fresnel.eta));
+    const vec3 plain = openpbr_fresnel_plain(fresnel, cos_theta);
     // OPENPBR_FEATURE_THIN_FILM (slang/openpbr_features.h): with the toggle a constant 0 the
     // film code below is compiled out of every lobe that reads a Fresnel factor.
     if (!(OPENPBR_FEATURE_THIN_FILM && fresnel.film_weight > 0.0f))
@@ -159,6 +174,64 @@ OPENPBR_FUNC vec3 openpbr_fresnel_evaluate(OPENPBR_IN(OpenPBR_Fresnel) fresnel, 
                                                       fresnel.kind == OPENPBR_FRESNEL_F82, fresnel.base_ior,
                                                       fresnel.base_n, fresnel.base_k, fresnel.film_thickness_um);
     return fresnel.tint * mix(plain, film, fresnel.film_weight);
+}
+
+// The base layer's dielectric and metal Fresnel factors at one microfacet angle (both built by
+// prepare, the first of kind OPENPBR_FRESNEL_DIELECTRIC or _NONE, the second _F82 or _NONE,
+// under the same film): equal to two openpbr_fresnel_evaluate calls, with the film's spectral
+// harmonics computed once for both (openpbr_thin_film_fresnel_bases). An inactive factor
+// is 0.
+struct OpenPBR_FresnelPair
+{
+    vec3 first;
+    vec3 second;
+};
+
+OPENPBR_FUNC OpenPBR_FresnelPair openpbr_fresnel_evaluate_base_pair(OPENPBR_IN(OpenPBR_Fresnel) dielectric,
+                                                                    bool dielectric_active,
+                                                                    OPENPBR_IN(OpenPBR_Fresnel) metal, bool metal_active,
+                                                                    float cos_theta)
+{
+    OpenPBR_FresnelPair pair;
+    pair.first = vec3(0.0f);
+    pair.second = vec3(0.0f);
+    if (dielectric_active)
+    {
+        pair.first = openpbr_fresnel_plain(dielectric, cos_theta);
+    }
+    if (metal_active)
+    {
+        pair.second = openpbr_fresnel_plain(metal, cos_theta);
+    }
+    const bool dielectric_filmed = dielectric_active && dielectric.film_weight > 0.0f;
+    const bool metal_filmed = metal_active && metal.film_weight > 0.0f;
+    // OPENPBR_FEATURE_THIN_FILM: compiled out with the toggle a constant 0, as in
+    // openpbr_fresnel_evaluate. Both factors carry the same film (openpbr_add_thin_film).
+    if (OPENPBR_FEATURE_THIN_FILM && (dielectric_filmed || metal_filmed))
+    {
+        const OpenPBR_ThinFilmBasePair film = openpbr_thin_film_fresnel_bases(
+            openpbr_thin_film_inputs(cos_theta, dielectric_filmed ? dielectric.outside_ior : metal.outside_ior,
+                                     dielectric_filmed ? dielectric.film_ior : metal.film_ior,
+                                     dielectric_filmed ? dielectric.film_thickness_um : metal.film_thickness_um),
+            dielectric_filmed, dielectric.base_ior, metal_filmed, metal.base_n, metal.base_k);
+        if (dielectric_filmed)
+        {
+            pair.first = mix(pair.first, film.dielectric, dielectric.film_weight);
+        }
+        if (metal_filmed)
+        {
+            pair.second = mix(pair.second, film.conductor, metal.film_weight);
+        }
+    }
+    if (dielectric_active)
+    {
+        pair.first = pair.first * dielectric.tint;
+    }
+    if (metal_active)
+    {
+        pair.second = pair.second * metal.tint;
+    }
+    return pair;
 }
 
 OPENPBR_NAMESPACE_END

@@ -34,13 +34,21 @@
 //    g_j = exp(-(2 pi OPD sigma_j)^2 / 2): the Fourier transform of the Gaussian, the paper's
 //    closed form. Fringes finer than the sensitivities are damped out instead of aliased, so a
 //    thick film tends to the incoherent C0.
-//  * The series keeps M = OPENPBR_THIN_FILM_SERIES_TERMS terms and sums the rest in closed
-//    form as a geometric series: for m > M, g^(m^2) becomes g^((M+1)^2 + 3 (M+1)(m - M - 1)),
-//    the chord of the exponent between m = M+1 and m = 2(M+1). The tail is exact for g = 1,
-//    so a zero-thickness film reproduces the base Fresnel exactly and near grazing angles,
-//    where |z| -> 1 and the Airy peaks become sharp, there is no truncation ringing. The chord
-//    (rather than the tangent at m = M+1) was chosen by the error against the spectral
-//    reference: it halves the worst grazing-angle error.
+//  * Harmonics first, lobes inside them. The RGB weights are linear, so the sum over lobes
+//    commutes with the sum over harmonics: channel c reflects
+//        R_c = C0 + 2 A sum_m Re(rho^m H_c(m)),   H_c(m) = sum_j W_cj g_j^(m^2) e^{i m delta_j},
+//    (rho = r21 r23, z = rho e^{i delta}; the weights W_cj sum to 1). H depends only on the film
+//    and the angle, not on the base or the polarization, so one set of film harmonics serves
+//    both polarizations, the three channels of a conductor, and the dielectric and metal bases
+//    evaluated at the same microfacet angle (openpbr_thin_film_harmonics). The series keeps
+//    M = 3 harmonics explicitly and sums the rest in closed form as a geometric series: for
+//    m > M, g^(m^2) becomes g^((M+1)^2 + 3 (M+1)(m - M - 1)), the chord of the exponent between
+//    m = M+1 and m = 2(M+1). The tail is exact for g = 1, so a zero-thickness film reproduces
+//    the base Fresnel exactly and near grazing angles, where |z| -> 1 and the Airy peaks become
+//    sharp, there is no truncation ringing. The chord (rather than the tangent at m = M+1) was
+//    chosen by the error against the spectral reference: it halves the worst grazing-angle
+//    error. The tail needs one complex division per lobe and polarization, so it is evaluated
+//    only where it can matter (OPENPBR_THIN_FILM_TRUNCATION_ERROR).
 //  * Evanescent film: when n_o sin(theta) >= n_f the wave does not propagate in the film
 //    (frustrated total internal reflection) and there is no fringe; the reflectance is then
 //    smooth in wavelength and is evaluated exactly at each lobe centre with the film's
@@ -65,9 +73,15 @@
 
 #include "openpbr_math.h"
 
-// Explicit terms of the Airy series before the closed-form tail.
-#ifndef OPENPBR_THIN_FILM_SERIES_TERMS
-#define OPENPBR_THIN_FILM_SERIES_TERMS 3
+// Largest reflectance the closed-form tail may drop, e.g. 1e-5. Harmonic m is at most
+// 2 |A| g^(m^2) |rho|^m in size, so the harmonics after the third sum to at most
+// 2 |A| g^16 |rho|^4 / (1 - |rho|); the tail (a complex division per lobe and polarization) is
+// evaluated only where that bound, with the largest lobe damping g, is above this value.
+// |rho| = |r21 r23| is small away from grazing incidence (0.006 for a 1.4 film on 1.5 glass,
+// about 0.15 on a metal), so most evaluations skip it. 1e-5 is a thirtieth of the smallest
+// error of the full model against the spectral reference (0.0003-0.008, tests/bsdf/test_thin_film.cpp).
+#ifndef OPENPBR_THIN_FILM_TRUNCATION_ERROR
+#define OPENPBR_THIN_FILM_TRUNCATION_ERROR 1e-5f
 #endif
 
 // Inputs are clamped into these ranges (NaN goes to the lower bound), so every input gives a
@@ -158,6 +172,7 @@ struct OpenPBR_ThinFilmPolarization
     float amplitude;     // A = -T12 T23 / (T12 + R12 T23)
     vec2 rho;            // r21 r23: one internal round trip without the propagation phase
     vec2 one_minus_rho;  // 1 - rho, from a form without cancellation (it vanishes near grazing)
+    float tail_bound;    // 2 |A| |rho|^4 / (1 - |rho|): bounds the harmonics m >= 4 (before damping)
 };
 
 // Everything about the film and base that does not depend on wavelength, for one channel.
@@ -202,6 +217,10 @@ OPENPBR_FUNC OpenPBR_ThinFilmPolarization openpbr_thin_film_polarization(float a
     // 1 + r12 r23 = 2 (a1 a2 + b1 b2) / ((a1 + b1)(a2 + b2)).
     polarization.one_minus_rho = openpbr_complex_multiply(2.0f * (a1 * a2 + b1 * b2), conjugate_sum_2) *
                                  (inverse_sum_2_norm * inverse_sum_1);
+    // |rho|^2 = R12 R23 and 1 - |rho| = (1 - R12 R23) / (1 + |rho|), without cancellation.
+    const float rho_squared = reflectance_12 * reflectance_23;
+    polarization.tail_bound = 2.0f * abs(polarization.amplitude) * rho_squared * rho_squared *
+                              (1.0f + sqrt(rho_squared)) * inverse_denominator;
     return polarization;
 }
 
@@ -311,50 +330,24 @@ OPENPBR_FUNC OpenPBR_ThinFilmLobePhase openpbr_thin_film_lobe_phase(float optica
     return phase;
 }
 
-// Gaussian-lobe average of one polarization's Airy series: mean + 2 A sum_m g^(m^2) Re(z^m),
-// with g the lobe's damping and z the round trip at the lobe centre.
-OPENPBR_FUNC float openpbr_thin_film_lobe_series(OPENPBR_IN(OpenPBR_ThinFilmPolarization) polarization,
-                                                 OPENPBR_IN(OpenPBR_ThinFilmLobePhase) phase)
+// The closed-form tail m >= 4 of one polarization's series averaged over one spectral lobe:
+// g^16 z^4 / (1 - g^12 z), z = rho e^{i delta_j} (the chord of the exponent, see the top).
+OPENPBR_FUNC float openpbr_thin_film_lobe_tail(OPENPBR_IN(OpenPBR_ThinFilmPolarization) polarization,
+                                               OPENPBR_IN(OpenPBR_ThinFilmLobePhase) phase)
 {
     const vec2 round_trip = openpbr_complex_multiply(polarization.rho, phase.phasor);  // z
-    const float damping = phase.damping;                                              // g
-    const float damping_squared = damping * damping;
-    float sum = 0.0f;
-    vec2 round_trip_power = round_trip;  // z^m
-    float damping_m_squared = 1.0f;      // becomes g^(m^2)
-    float damping_odd = damping;         // g^(2m - 1), so g^(m^2) = g^((m-1)^2) g^(2m-1)
-    float damping_m = 1.0f;              // becomes g^m
-    for (int m = 1; m <= OPENPBR_THIN_FILM_SERIES_TERMS; ++m)
-    {
-        damping_m_squared *= damping_odd;
-        damping_m *= damping;
-        sum += damping_m_squared * round_trip_power.x;
-        round_trip_power = openpbr_complex_multiply(round_trip_power, round_trip);
-        damping_odd *= damping_squared;
-    }
-    // Tail m > M, geometric: g^((M+1)^2) z^(M+1) / (1 - w z) with w = g^(3(M+1)), i.e. the
-    // exponent m^2 replaced by its chord between m = M+1 and m = 2(M+1). Exact for g = 1 and
-    // for the first tail term; damping_odd is now g^(2M+1) and damping_m g^M.
-    const float damping_tail = damping_m_squared * damping_odd;
-    const float tail_ratio = damping_odd * damping_m * damping_squared;  // w
+    const vec2 round_trip_squared = openpbr_complex_multiply(round_trip, round_trip);
+    const float damping_squared = phase.damping * phase.damping;
+    const float damping_4 = damping_squared * damping_squared;
+    const float damping_8 = damping_4 * damping_4;
     // 1 - w z = (1 - rho) + rho (1 - phasor) + (1 - w) z, each part without cancellation.
     const vec2 one_minus_tail_ratio_z = polarization.one_minus_rho +
                                         openpbr_complex_multiply(polarization.rho, phase.one_minus_phasor) +
-                                        (1.0f - tail_ratio) * round_trip;
-    sum += damping_tail * openpbr_complex_divide(round_trip_power, one_minus_tail_ratio_z).x;
-    return polarization.mean + 2.0f * polarization.amplitude * sum;
-}
-
-// Reflectance of one channel's stack averaged over one spectral lobe.
-OPENPBR_FUNC float openpbr_thin_film_lobe_reflectance(OPENPBR_IN(OpenPBR_ThinFilmStack) stack,
-                                                      OPENPBR_IN(OpenPBR_ThinFilmLobePhase) phase, float nu)
-{
-    if (stack.film_is_evanescent)
-    {
-        // No fringes: smooth in wavelength, so the lobe average is the value at its centre.
-        return openpbr_thin_film_evanescent_reflectance(stack, nu);
-    }
-    return 0.5f * (openpbr_thin_film_lobe_series(stack.s, phase) + openpbr_thin_film_lobe_series(stack.p, phase));
+                                        (1.0f - damping_8 * damping_4) * round_trip;
+    return damping_8 * damping_8 *
+           openpbr_complex_divide(openpbr_complex_multiply(round_trip_squared, round_trip_squared),
+                                  one_minus_tail_ratio_z)
+               .x;
 }
 
 // ---- Input handling shared by the public functions ----------------------------------------
@@ -481,51 +474,186 @@ OPENPBR_FUNC float openpbr_thin_film_channel_of(vec3 v, int channel)
     return channel == 0 ? v.x : (channel == 1 ? v.y : v.z);
 }
 
-// The full model on either base: a conductor of complex IOR base_n + i base_k per RGB channel,
-// or (conductor false) a dielectric of real IOR base_ior, whose stack is the same for every
-// channel. One loop over the channels whose base differs (three for a conductor, one for a
-// dielectric) around one loop over the spectral lobes, so the stack and lobe code are compiled
-// once. The lobe phases depend only on the film, but a conductor recomputes them per channel:
-// sharing them needs the three stacks alive at once, which made llvmpipe's compile of the
-// module 35 % slower, and costs a filmed metal's eval about 15 % on the CPU instead. Sums run
-// lobe by lobe in the order 0 .. 5 in each channel, as when written out.
-OPENPBR_FUNC vec3 openpbr_thin_film_fresnel_full(float cos_theta, float eta_outside, float eta_film, bool conductor,
-                                                 float base_ior, vec3 base_n, vec3 base_k, float thickness_um)
+// The film's spectral harmonics at one angle (see the top): H_c(m) for m = 1, 2, 3 per RGB
+// channel, real and imaginary parts. They depend on the film and the angle only.
+struct OpenPBR_ThinFilmHarmonics
 {
-    const OpenPBR_ThinFilmInputs inputs = openpbr_thin_film_inputs(cos_theta, eta_outside, eta_film, thickness_um);
-    const float n_b = openpbr_clamp_finite(base_ior, OPENPBR_THIN_FILM_MIN_IOR, OPENPBR_THIN_FILM_MAX_IOR);
-    const float dielectric_normal_term = openpbr_thin_film_normal_term(n_b, inputs.n_o, inputs.outside_normal_term);
-    if ((!conductor && dielectric_normal_term <= 0.0f) || inputs.cos_o <= 0.0f)
+    vec3 real_1;
+    vec3 imaginary_1;
+    vec3 real_2;
+    vec3 imaginary_2;
+    vec3 real_3;
+    vec3 imaginary_3;
+    float largest_tail_damping;  // max_j g_j^16, the damping of the first tail harmonic
+};
+
+// Harmonics for a film of optical path difference 2 n_f d cos_f (micrometres): one loop over
+// the spectral lobes, six phases in all.
+OPENPBR_FUNC OpenPBR_ThinFilmHarmonics openpbr_thin_film_harmonics(float optical_path_difference_um)
+{
+    OpenPBR_ThinFilmHarmonics harmonics;
+    harmonics.real_1 = vec3(0.0f);
+    harmonics.imaginary_1 = vec3(0.0f);
+    harmonics.real_2 = vec3(0.0f);
+    harmonics.imaginary_2 = vec3(0.0f);
+    harmonics.real_3 = vec3(0.0f);
+    harmonics.imaginary_3 = vec3(0.0f);
+    harmonics.largest_tail_damping = 0.0f;
+    for (int lobe_index = 0; lobe_index < 6; ++lobe_index)
     {
-        return vec3(1.0f);
+        const OpenPBR_ThinFilmSpectralLobe lobe = openpbr_thin_film_spectral_lobe(lobe_index);
+        const OpenPBR_ThinFilmLobePhase phase =
+            openpbr_thin_film_lobe_phase(optical_path_difference_um, lobe.nu, lobe.sigma);
+        const float damping = phase.damping;
+        const float damping_4 = openpbr_square(damping * damping);
+        const vec2 phasor_2 = openpbr_complex_multiply(phase.phasor, phase.phasor);
+        const vec2 phasor_3 = openpbr_complex_multiply(phasor_2, phase.phasor);
+        const vec3 weight_1 = lobe.weight * damping;                          // W g
+        const vec3 weight_2 = lobe.weight * damping_4;                        // W g^4
+        const vec3 weight_3 = lobe.weight * (damping_4 * damping_4 * damping);  // W g^9
+        harmonics.real_1 += weight_1 * phase.phasor.x;
+        harmonics.imaginary_1 += weight_1 * phase.phasor.y;
+        harmonics.real_2 += weight_2 * phasor_2.x;
+        harmonics.imaginary_2 += weight_2 * phasor_2.y;
+        harmonics.real_3 += weight_3 * phasor_3.x;
+        harmonics.imaginary_3 += weight_3 * phasor_3.y;
+        harmonics.largest_tail_damping = max(harmonics.largest_tail_damping, openpbr_square(damping_4 * damping_4));
     }
-    const int channel_count = conductor ? 3 : 1;
+    return harmonics;
+}
+
+// mean + 2 A sum_{m=1..3} Re(rho^m H_c(m)) for the three channels.
+OPENPBR_FUNC vec3 openpbr_thin_film_harmonic_sum(OPENPBR_IN(OpenPBR_ThinFilmPolarization) polarization,
+                                                 OPENPBR_IN(OpenPBR_ThinFilmHarmonics) harmonics)
+{
+    const vec2 rho_2 = openpbr_complex_multiply(polarization.rho, polarization.rho);
+    const vec2 rho_3 = openpbr_complex_multiply(rho_2, polarization.rho);
+    const vec3 sum = polarization.rho.x * harmonics.real_1 - polarization.rho.y * harmonics.imaginary_1 +
+                     rho_2.x * harmonics.real_2 - rho_2.y * harmonics.imaginary_2 + rho_3.x * harmonics.real_3 -
+                     rho_3.y * harmonics.imaginary_3;
+    return vec3(polarization.mean) + (2.0f * polarization.amplitude) * sum;
+}
+
+// Polarization-averaged reflectance of one stack in all three channels (a conductor's channel
+// keeps its own component): the harmonic sums, plus the tail lobe by lobe where it matters. An
+// evanescent film has no fringes: each lobe is evaluated exactly at its centre instead (the
+// reflectance is smooth in wavelength there). Both per-lobe cases share one loop, whose body is
+// compiled once (llvmpipe unrolls it; a second loop cost 25 % more compile time).
+OPENPBR_FUNC vec3 openpbr_thin_film_stack_reflectance(OPENPBR_IN(OpenPBR_ThinFilmStack) stack,
+                                                      OPENPBR_IN(OpenPBR_ThinFilmHarmonics) harmonics)
+{
+    const bool evanescent = stack.film_is_evanescent;
     vec3 rgb = vec3(0.0f);
-    for (int channel = 0; channel < channel_count; ++channel)
+    if (!evanescent)
+    {
+        rgb = 0.5f * (openpbr_thin_film_harmonic_sum(stack.s, harmonics) +
+                      openpbr_thin_film_harmonic_sum(stack.p, harmonics));
+    }
+    if (evanescent || max(stack.s.tail_bound, stack.p.tail_bound) * harmonics.largest_tail_damping >
+                          OPENPBR_THIN_FILM_TRUNCATION_ERROR)
+    {
+        for (int lobe_index = 0; lobe_index < 6; ++lobe_index)
+        {
+            const OpenPBR_ThinFilmSpectralLobe lobe = openpbr_thin_film_spectral_lobe(lobe_index);
+            float lobe_value = 0.0f;
+            if (evanescent)
+            {
+                lobe_value = openpbr_thin_film_evanescent_reflectance(stack, lobe.nu);
+            }
+            else
+            {
+                const OpenPBR_ThinFilmLobePhase phase =
+                    openpbr_thin_film_lobe_phase(stack.optical_path_difference_um, lobe.nu, lobe.sigma);
+                // 0.5 (2 A_s tail_s + 2 A_p tail_p)
+                lobe_value = stack.s.amplitude * openpbr_thin_film_lobe_tail(stack.s, phase) +
+                             stack.p.amplitude * openpbr_thin_film_lobe_tail(stack.p, phase);
+            }
+            rgb += lobe.weight * lobe_value;
+        }
+    }
+    return rgb;
+}
+
+// Optical path difference 2 n_f d cos_f of the film (0 when it is evanescent).
+OPENPBR_FUNC float openpbr_thin_film_optical_path_difference(OPENPBR_IN(OpenPBR_ThinFilmInputs) inputs)
+{
+    return 2.0f * openpbr_safe_sqrt(inputs.film_normal_term) * inputs.thickness_um;
+}
+
+// The film over a dielectric base (real IOR dielectric_ior), over a conductor base (complex IOR
+// base_n + i base_k per RGB channel), or over both at once: the base layer's two Fresnel
+// factors at one microfacet angle (spec "Thin-film iridescence": the film lies over the metal
+// and the dielectric), which share the film's harmonics. A base that is not wanted returns 0.
+struct OpenPBR_ThinFilmBasePair
+{
+    vec3 dielectric;
+    vec3 conductor;
+};
+
+// One loop over the stacks whose base differs (index 0 the dielectric, 1-3 the conductor's
+// channels), so the stack code is compiled once per call site.
+OPENPBR_FUNC OpenPBR_ThinFilmBasePair openpbr_thin_film_fresnel_bases(OPENPBR_IN(OpenPBR_ThinFilmInputs) inputs,
+                                                                     bool with_dielectric, float dielectric_ior,
+                                                                     bool with_conductor, vec3 base_n, vec3 base_k)
+{
+    OpenPBR_ThinFilmBasePair pair;
+    pair.dielectric = vec3(with_dielectric ? 1.0f : 0.0f);
+    pair.conductor = vec3(with_conductor ? 1.0f : 0.0f);
+    const float n_b = openpbr_clamp_finite(dielectric_ior, OPENPBR_THIN_FILM_MIN_IOR, OPENPBR_THIN_FILM_MAX_IOR);
+    const float dielectric_normal_term = openpbr_thin_film_normal_term(n_b, inputs.n_o, inputs.outside_normal_term);
+    if (inputs.cos_o <= 0.0f)
+    {
+        return pair;
+    }
+    // Total internal reflection at a dielectric base reflects everything (pair.dielectric 1).
+    const int first_stack = with_dielectric && dielectric_normal_term > 0.0f ? 0 : 1;
+    const int end_stack = with_conductor ? 4 : 1;
+    if (with_conductor)
+    {
+        pair.conductor = vec3(0.0f);
+    }
+    const OpenPBR_ThinFilmHarmonics harmonics =
+        openpbr_thin_film_harmonics(openpbr_thin_film_optical_path_difference(inputs));
+    for (int stack_index = first_stack; stack_index < end_stack; ++stack_index)
     {
         OpenPBR_ThinFilmBase base;
         base.ior_squared = vec2(n_b * n_b, 0.0f);
         base.normal_term = vec2(sqrt(max(dielectric_normal_term, 0.0f)), 0.0f);
-        vec3 channel_mask = vec3(1.0f);
-        if (conductor)
+        const int channel = stack_index - 1;
+        if (stack_index > 0)
         {
             base = openpbr_thin_film_conductor_base(inputs, openpbr_thin_film_channel_of(base_n, channel),
                                                     openpbr_thin_film_channel_of(base_k, channel));
-            channel_mask = vec3(channel == 0 ? 1.0f : 0.0f, channel == 1 ? 1.0f : 0.0f, channel == 2 ? 1.0f : 0.0f);
         }
         const OpenPBR_ThinFilmStack stack = openpbr_thin_film_stack(inputs.cos_o, inputs.n_o, inputs.n_f, inputs.thickness_um,
                                                                    inputs.film_normal_term, base.ior_squared, base.normal_term);
-        for (int lobe_index = 0; lobe_index < 6; ++lobe_index)
+        const vec3 rgb = openpbr_thin_film_stack_reflectance(stack, harmonics);
+        if (stack_index == 0)
         {
-            const OpenPBR_ThinFilmSpectralLobe lobe = openpbr_thin_film_spectral_lobe(lobe_index);
-            const float reflectance = openpbr_thin_film_lobe_reflectance(
-                stack, openpbr_thin_film_lobe_phase(stack.optical_path_difference_um, lobe.nu, lobe.sigma), lobe.nu);
-            rgb += (lobe.weight * channel_mask) * reflectance;
+            pair.dielectric = rgb;
+        }
+        else
+        {
+            pair.conductor += vec3(channel == 0 ? 1.0f : 0.0f, channel == 1 ? 1.0f : 0.0f, channel == 2 ? 1.0f : 0.0f) * rgb;
         }
     }
     // The sensitivities have negative lobes, so a strongly coloured spectrum can land slightly
     // outside the RGB cube; a reflectance must stay in [0, 1].
-    return openpbr_clamp_finite(rgb, 0.0f, 1.0f);
+    pair.dielectric = openpbr_clamp_finite(pair.dielectric, 0.0f, 1.0f);
+    pair.conductor = openpbr_clamp_finite(pair.conductor, 0.0f, 1.0f);
+    return pair;
+}
+
+// The full model on one base: a conductor of complex IOR base_n + i base_k per RGB channel, or
+// (conductor false) a dielectric of real IOR base_ior. All IORs absolute, thickness in
+// micrometres.
+OPENPBR_FUNC vec3 openpbr_thin_film_fresnel_full(float cos_theta, float eta_outside, float eta_film, bool conductor,
+                                                 float base_ior, vec3 base_n, vec3 base_k, float thickness_um)
+{
+    const OpenPBR_ThinFilmBasePair pair =
+        openpbr_thin_film_fresnel_bases(openpbr_thin_film_inputs(cos_theta, eta_outside, eta_film, thickness_um),
+                                        !conductor, base_ior, conductor, base_n, base_k);
+    return conductor ? pair.conductor : pair.dielectric;
 }
 
 // Film on a dielectric base; all three IORs absolute (e.g. 1.0 air or 1.6 coat, 1.33 film,
