@@ -35,6 +35,7 @@
 
 #include "openpbr_lobe_common.h"
 #include "../math/openpbr_warps.h"
+#include "../openpbr_resolved_inputs.h"
 
 #ifndef OPENPBR_FUZZ_LTC_SIZE
 #define OPENPBR_FUZZ_LTC_SIZE 32
@@ -291,6 +292,19 @@ OPENPBR_FUNC vec3 openpbr_fuzz_lobe_albedo(OPENPBR_IN(OpenPBR_FuzzLobe) lobe, ve
 {
     OPENPBR_UNUSED(view);  // the albedo at the prepared view is stored by init
     return lobe.weight;
+}
+
+// OpenPBR 1.1 "Fuzz": the fuzz layer of weight fuzz_weight, color fuzz_color and roughness
+// fuzz_roughness over everything else; layer_weight is what reaches it (the geometry
+// opacity). The layers below see lerp(1, 1 - R, fuzz_weight) of it (openpbr_fuzz_albedo_white).
+// `albedo` receives its directional albedo at the view, weights included.
+OPENPBR_FUNC OpenPBR_FuzzLobe openpbr_fuzz_lobe_prepare(OPENPBR_IN(OpenPBR_ResolvedInputs) inputs, float layer_weight,
+                                                        vec3 view, OPENPBR_OUT(vec3) albedo)
+{
+    const OpenPBR_FuzzLobe lobe =
+        openpbr_fuzz_lobe_init(vec3(layer_weight * inputs.fuzz_weight), inputs.fuzz_color, inputs.fuzz_roughness, view);
+    albedo = openpbr_fuzz_lobe_albedo(lobe, view);
+    return lobe;
 }
 
 OPENPBR_NAMESPACE_END
