@@ -88,7 +88,7 @@ int main(int argc, char** argv)
     lutgen->add_option("--seed", lut_options.seed, "0 = the shipped tables; others give independent replicas")
         ->capture_default_str();
     lutgen->add_option("-o,--output-dir", lut_output_directory,
-                       "where openpbr_lut_values.inc (array mode) and openpbr_lut.bin (buffer mode) go")
+                       "where openpbr_lut_values.inc goes (the build derives openpbr_lut.bin from it)")
         ->capture_default_str();
     lutgen->add_flag("--progress", lut_options.progress_always, "print progress even when stderr is not a terminal");
 
@@ -99,7 +99,8 @@ int main(int argc, char** argv)
         ->check(CLI::Range(std::uint64_t(1024), std::uint64_t(1) << 34));
     fuzzgen->add_option("--seed", fuzz_options.seed, "base seed of the per-cell streams")->capture_default_str();
     fuzzgen->add_option("-o,--output-dir", fuzz_output_directory,
-                        "where openpbr_fuzz_ltc_values.inc and openpbr_fuzz_ltc.bin go")->capture_default_str();
+                        "where openpbr_fuzz_ltc_values.inc goes (the build derives openpbr_fuzz_ltc.bin from it)")
+        ->capture_default_str();
     fuzzgen->add_flag("--progress", fuzz_options.progress, "print a progress line per 10 %");
 
     CLI::App* compile = app.add_subcommand("compile", "emit the shaders of every target (SPIR-V, HLSL, Metal, CUDA, GLSL)");
@@ -135,21 +136,19 @@ int main(int argc, char** argv)
         if (lutgen->parsed())
         {
             const std::vector<float> table = openpbr::host::generate_lut(lut_options);
+            // The tracked form only: the build derives openpbr_lut.bin from it (tools/table_inc_to_bin.py).
             const std::string values_path = lut_output_directory + "/openpbr_lut_values.inc";
-            const std::string binary_path = lut_output_directory + "/openpbr_lut.bin";
             openpbr::host::write_lut_values_inc(values_path, table, openpbr::host::describe(lut_options));
-            openpbr::host::write_lut_binary(binary_path, table);
-            std::cout << "wrote " << values_path << " and " << binary_path << " (" << table.size() << " values, "
+            std::cout << "wrote " << values_path << " (" << table.size() << " values, "
                       << openpbr::host::describe(lut_options) << ")\n";
         }
         if (fuzzgen->parsed())
         {
             const std::vector<float> table = openpbr::host::generate_fuzz_table(fuzz_options);
+            // The tracked form only: the build derives openpbr_fuzz_ltc.bin from it.
             const std::string values_path = fuzz_output_directory + "/openpbr_fuzz_ltc_values.inc";
-            const std::string binary_path = fuzz_output_directory + "/openpbr_fuzz_ltc.bin";
             openpbr::host::write_fuzz_values_inc(values_path, table);
-            openpbr::host::write_fuzz_binary(binary_path, table);
-            std::cout << "wrote " << values_path << " and " << binary_path << " (" << table.size() << " values)\n";
+            std::cout << "wrote " << values_path << " (" << table.size() << " values)\n";
         }
         if (conformance->parsed())
         {
