@@ -241,8 +241,8 @@ OPENPBR_FUNC float openpbr_selection_white_scale(vec3 channel_weights)
 // Composes the lobes, each set up by its prepare in slang/lobes/ only where its weight is above
 // zero (a lobe whose weight is zero costs nothing): the others keep the empty lobe and
 // selection probability 0, which eval, pdf and sample never look at. With a feature toggled off
-// its weight is the constant 0, so the compiler removes the set-up altogether. `inputs` have passed openpbr_prepare_inputs.
-// exterior_ior: the absolute IOR of the medium the view is in (README "Exterior medium"),
+// its weight is the constant 0, so the compiler removes the set-up altogether.
+// `inputs` have passed openpbr_prepare_inputs. exterior_ior: the absolute IOR of the medium the view is in (README "Exterior medium"),
 // already passed through openpbr_contract_exterior_ior. `path_throughput` only steers lobe
 // selection (openpbr_selection_channel_weights); white gives the unweighted probabilities.
 OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare_lobes_of(OPENPBR_IN(OpenPBR_ResolvedInputs) inputs, vec3 view_world,
