@@ -16,12 +16,12 @@ if(NOT OPENPBR_INSTALL)
 endif()
 include(CMakePackageConfigHelpers)
 
-# The single source, the Slang module and the tables in both forms, all from slang/: the headers
-# include their tables as generated/*.inc, and GPU callers upload generated/*.bin.
+# The single source, the Slang module and the tables' tracked form from slang/: the headers
+# include their tables as generated/*.inc.
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/slang/ DESTINATION ${OPENPBR_INSTALL_INCLUDEDIR}/slang
-  FILES_MATCHING PATTERN "*.h" PATTERN "*.inc" PATTERN "*.slang" PATTERN "*.bin")
-# Table files a build step writes into the build tree (e.g. an .inc form derived from the .bin)
-# join them there: the step appends its outputs to OPENPBR_GENERATED_TABLE_FILES.
+  FILES_MATCHING PATTERN "*.h" PATTERN "*.inc" PATTERN "*.slang")
+# The tables' binary form, which GPU callers upload as generated/*.bin: derived from the .inc
+# into the build tree (top-level CMakeLists.txt, "Tables"), listed in OPENPBR_GENERATED_TABLE_FILES.
 if(OPENPBR_GENERATED_TABLE_FILES)
   install(FILES ${OPENPBR_GENERATED_TABLE_FILES} DESTINATION ${OPENPBR_INSTALL_INCLUDEDIR}/slang/generated)
 endif()

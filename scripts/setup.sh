@@ -15,7 +15,7 @@ packages=(
   libglm-dev libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers vulkan-tools
   glslang-tools spirv-tools libpugixml-dev libcli11-dev nlohmann-json3-dev libstb-dev
   libtbb-dev libgtest-dev libgmock-dev libbenchmark-dev python3 python3-matplotlib
-  libclang-rt-14-dev
+  libclang-rt-14-dev clang-format
 )
 missing=()
 for package in "${packages[@]}"; do

@@ -3,9 +3,11 @@
 # installed package as outside projects use it (scripts/ci_consumers.sh: install to a temporary
 # prefix, build and run the three consumers of examples/), then the stability checks of
 # docs/stability.md: the BSDF fuzzer for a bounded time (scripts/ci_fuzz.sh, 60 s) and the CPU
-# unit tests under ASan + UBSan (scripts/ci_sanitizers.sh). Every step runs even when an earlier
-# one fails; the script fails if any did. OPENPBR_SKIP_CONSUMERS=1, OPENPBR_SKIP_SANITIZERS=1 and
-# OPENPBR_SKIP_FUZZ=1 leave those steps out, e.g. for a quick local run.
+# unit tests under ASan + UBSan (scripts/ci_sanitizers.sh), and the format check of the C, C++ and
+# CUDA sources against .clang-format (scripts/format-check.sh). Every step runs even when an
+# earlier one fails; the script fails if any did. OPENPBR_SKIP_CONSUMERS=1,
+# OPENPBR_SKIP_SANITIZERS=1, OPENPBR_SKIP_FUZZ=1 and OPENPBR_SKIP_FORMAT=1 leave those steps out,
+# e.g. for a quick local run.
 set -euo pipefail
 repo_root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 "$repo_root/scripts/setup.sh"
@@ -22,6 +24,9 @@ if [[ "${OPENPBR_SKIP_FUZZ:-0}" != 1 ]]; then
 fi
 if [[ "${OPENPBR_SKIP_SANITIZERS:-0}" != 1 ]]; then
   "$repo_root/scripts/ci_sanitizers.sh" || failed+=(ci_sanitizers)
+fi
+if [[ "${OPENPBR_SKIP_FORMAT:-0}" != 1 ]]; then
+  "$repo_root/scripts/format-check.sh" || failed+=(format-check)
 fi
 if ((${#failed[@]})); then
   echo "test: failed: ${failed[*]}" >&2

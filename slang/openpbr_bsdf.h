@@ -11,7 +11,8 @@
 // the inverted IOR); thin-walled surfaces are mirrored so the view is always on top.
 // Every view-dependent factor (albedos, compensation, lobe weights and selection
 // probabilities) is computed once in openpbr_prepare; eval, sample and pdf then only do
-// per-light-direction work.
+// per-light-direction work. Each lobe's set-up is its prepare in its file under slang/lobes/
+// (the lobe shape: slang/lobes/openpbr_lobe_common.h); this file composes them.
 //
 // Conventions: world-space unit directions pointing away from the surface; eval returns
 // BSDF x |cos(light, normal)|; sample returns weight = BSDF x |cos| / pdf; pdf == 0 means no
@@ -102,106 +103,6 @@ struct OpenPBR_PreparedBsdf
     vec3 emission;                       // attenuated emission towards the view, nits
     OpenPBR_HomogeneousVolume volume;    // interior medium (is_present false when none)
 };
-
-// The single-scattering albedos of one GGX lobe that compensation and layering read, for its
-// view (computed once in prepare).
-struct OpenPBR_GgxLobeAlbedo
-{
-    // Alpha of the isotropic look-ups of E_T0 and E_RT: the root mean square of
-    // (alpha_t, alpha_b), which OpenPBR's anisotropy mapping keeps equal to r^2 (spec
-    // "Microfacet model").
-    float table_alpha;
-    // E, the F = 1 reflection albedo of the lobe itself at this view (Turquin compensation).
-    float albedo;
-    // E_R of an anisotropic lobe is approximated from the isotropic 3D table as
-    //   E_R(mu, alpha_view, eta) E / E(mu, alpha_view),
-    //   alpha_view^2 = mu^2 r^4 + (1 - mu^2) (alpha_t^2 cos^2 phi + alpha_b^2 sin^2 phi):
-    // the Fresnel factor sees mostly the slopes along the view azimuth (their projected
-    // roughness also gives the view's masking exactly, Heitz 2014), blended towards the
-    // azimuth-free r^2 at normal incidence; the ratio then carries the remaining difference of
-    // the shadowing loss. Scaling E_R(mu, r^2) by E / E(mu, r^2) instead misses the Fresnel
-    // shift (towards grazing along the smooth direction the visible normals cluster round the
-    // macro normal and E_R nearly doubles) and measured worse than no correction. E_T0 and E_RT
-    // keep r^2 unscaled: no such stand-in measured better. Isotropic lobes: table_alpha and 1.
-    float reflection_alpha;
-    float reflection_scale;
-};
-
-// Anisotropic lobes (anisotropy > 0) read the 4D table of E(mu, r, a, phi) / E(mu, r);
-// isotropic ones only the cheaper 2D table. roughness and anisotropy are those given to
-// openpbr_ggx_alpha for alpha; view is local (tangent along x).
-OPENPBR_FUNC OpenPBR_GgxLobeAlbedo openpbr_ggx_lobe_albedo(float roughness, float anisotropy, vec2 alpha, vec3 view)
-{
-    OpenPBR_GgxLobeAlbedo result;
-    result.table_alpha = sqrt(0.5f * (alpha.x * alpha.x + alpha.y * alpha.y));
-    // A delta lobe scatters once: albedo 1 exactly, so no compensation is applied to it (the
-    // tables near alpha = 0 are close to 1 but not exactly at grazing angles).
-    const bool is_delta = openpbr_ggx_is_delta(alpha);
-    result.albedo = is_delta ? 1.0f : openpbr_ggx_albedo(view.z, result.table_alpha);
-    result.reflection_alpha = result.table_alpha;
-    result.reflection_scale = 1.0f;
-    if (anisotropy > 0.0f && !is_delta)
-    {
-        const float cos_phi_squared = openpbr_cos_azimuth_squared(view);
-        result.albedo *= openpbr_ggx_anisotropy_ratio(view.z, roughness, anisotropy, cos_phi_squared);
-        const float mu_squared = view.z * view.z;
-        const float projected_alpha_squared =
-            alpha.x * alpha.x * cos_phi_squared + alpha.y * alpha.y * (1.0f - cos_phi_squared);
-        result.reflection_alpha =
-            sqrt(mu_squared * result.table_alpha * result.table_alpha + (1.0f - mu_squared) * projected_alpha_squared);
-        result.reflection_scale = result.albedo / max(openpbr_ggx_albedo(view.z, result.reflection_alpha), 1e-3f);
-    }
-    return result;
-}
-
-// Mean change F_film - F_plain of the Fresnel factor over the light a GGX reflection lobe
-// reflects at this view: a fixed 4-point quadrature over the visible normals (a rank-1 lattice
-// through the spherical-cap sampler, each point weighted by the reflected fraction
-// G2 / G1, Heitz 2014), exact for a mirror. The film's phase makes F_film oscillate with the
-// microfacet angle, so no single angle stands for the lobe: evaluated at the view cosine the
-// estimate was off by up to 14 % at roughness 0.9 (white furnace of a filmed white dielectric),
-// 1.4 % with these 4 points. Only the change is estimated this way; the plain part keeps the
-// tabulated E_R (the ratio F_film / F_plain would magnify the tables' error).
-OPENPBR_FUNC vec3 openpbr_film_fresnel_change(OPENPBR_IN(OpenPBR_Fresnel) filmed, float eta, vec3 view, vec2 alpha)
-{
-    // A mirror is one node at the view; the film is evaluated at one call site either way (GPU
-    // compilers inline every call, and the film is the largest function of the BSDF).
-    const bool is_delta = openpbr_ggx_is_delta(alpha);
-    const int node_count = is_delta ? 1 : 4;
-    const float lambda_view = is_delta ? 0.0f : openpbr_ggx_lambda(view, alpha);
-    vec3 change = vec3(0.0f);
-    float weight_sum = 0.0f;
-    for (int node = 0; node < node_count; ++node)
-    {
-        float cos_microfacet = view.z;
-        float weight = 1.0f;
-        if (!is_delta)
-        {
-            const vec2 u = vec2(fract(0.5f + 0.618034f * float(node)), (float(node) + 0.5f) * 0.25f);
-            const vec3 microfacet = openpbr_sample_vndf_spherical_cap(view, alpha, u);
-            cos_microfacet = dot(view, microfacet);
-            const vec3 light = 2.0f * cos_microfacet * microfacet - view;
-            weight = light.z > 0.0f
-                         ? (1.0f + lambda_view) / (1.0f + lambda_view + openpbr_ggx_lambda(light, alpha))
-                         : 0.0f;
-        }
-        if (weight > 0.0f)
-        {
-            change += weight * (openpbr_fresnel_evaluate(filmed, cos_microfacet) -
-                                vec3(openpbr_fresnel_dielectric(cos_microfacet, eta)));
-            weight_sum += weight;
-        }
-    }
-    return weight_sum > 0.0f ? change / weight_sum : vec3(0.0f);
-}
-
-// Turquin 2019, "Practical multiple scattering compensation for microfacet models": scale the
-// single-scattering lobe by 1 + F0 (1 - E) / E, E the F = 1 albedo of the same lobe.
-OPENPBR_FUNC vec3 openpbr_multiple_scattering_compensation(vec3 f0, float ggx_albedo)
-{
-    const float albedo = max(ggx_albedo, 1e-3f);
-    return vec3(1.0f) + f0 * ((1.0f - albedo) / albedo);
-}
 
 // OpenPBR 1.1 "Base Substrate", modulated IOR: specular_weight xi scales F0 through the IOR,
 // eps = sgn(eta - 1) sqrt(xi F0(eta)), eta' = (1 + eps) / (1 - eps), xi clamped below 1/F0.
@@ -337,11 +238,11 @@ OPENPBR_FUNC float openpbr_selection_white_scale(vec3 channel_weights)
     return white ? channel_weights.x : openpbr_luminance(channel_weights);
 }
 
-// Every lobe below is set up only where its weight is above zero (issue "a lobe whose weight is
-// zero costs nothing"): the others keep the empty lobe and selection probability 0, which eval,
-// pdf and sample never look at. With a feature toggled off its weight is the constant 0, so the
-// compiler removes the set-up altogether. `inputs` have passed openpbr_prepare_inputs.
-// exterior_ior: the absolute IOR of the medium the view is in (README "Exterior medium"),
+// Composes the lobes, each set up by its prepare in slang/lobes/ only where its weight is above
+// zero (a lobe whose weight is zero costs nothing): the others keep the empty lobe and
+// selection probability 0, which eval, pdf and sample never look at. With a feature toggled off
+// its weight is the constant 0, so the compiler removes the set-up altogether.
+// `inputs` have passed openpbr_prepare_inputs. exterior_ior: the absolute IOR of the medium the view is in (README "Exterior medium"),
 // already passed through openpbr_contract_exterior_ior. `path_throughput` only steers lobe
 // selection (openpbr_selection_channel_weights); white gives the unweighted probabilities.
 OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare_lobes_of(OPENPBR_IN(OpenPBR_ResolvedInputs) inputs, vec3 view_world,
@@ -381,7 +282,6 @@ OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare_lobes_of(OPENPBR_IN(OpenPBR_Re
         bsdf.fuzz_view = openpbr_floor_view_cosine(bsdf.fuzz_view);
     }
     const vec3 view = bsdf.view;
-    const float mu = view.z;
     // The interior medium exists only where light can enter (the volume helper returns an empty
     // one otherwise too; the branch skips its set-up for opaque and thin-walled materials).
     bsdf.volume = (entering_weight > 0.0f && !thin_walled) ? openpbr_make_volume(inputs) : openpbr_make_empty_volume();
@@ -429,10 +329,7 @@ OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare_lobes_of(OPENPBR_IN(OpenPBR_Re
     bsdf.coat_absorbs = false;
     bsdf.coat_inverse_eta_squared = 1.0f / (coat_eta * coat_eta);
     bsdf.under_coat_transmitted = vec3(1.0f);
-    const vec3 zero = vec3(0.0f);
-    const OpenPBR_Fresnel no_fresnel = openpbr_make_constant_fresnel(vec3(1.0f));
     // Empty lobes: every argument is a constant, so these fold to stores of constants.
-    const vec3 normal_view = vec3(0.0f, 0.0f, 1.0f);
     bsdf.fuzz = openpbr_fuzz_lobe_empty();
     bsdf.coat = openpbr_microfacet_reflection_lobe_empty(OPENPBR_LOBE_ID_COAT);
     bsdf.specular = openpbr_microfacet_reflection_lobe_empty(OPENPBR_LOBE_ID_SPECULAR_REFLECTION);
@@ -440,24 +337,16 @@ OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare_lobes_of(OPENPBR_IN(OpenPBR_Re
     bsdf.thin_transmission = openpbr_microfacet_reflection_lobe_empty(OPENPBR_LOBE_ID_SPECULAR_TRANSMISSION);
     bsdf.diffuse = openpbr_diffuse_lobe_empty(1.0f);
     bsdf.diffuse_transmission = openpbr_diffuse_lobe_empty(-1.0f);
-    bsdf.transmission = openpbr_dielectric_lobe_init(zero, zero, vec2(1.0f), vec3(1.0f), false,
-                                                     OPENPBR_LOBE_ID_SPECULAR_TRANSMISSION, normal_view);
+    bsdf.transmission = openpbr_dielectric_lobe_empty(OPENPBR_LOBE_ID_SPECULAR_TRANSMISSION);
 
     if (bsdf.inside)
     {
-        // Inside: the dielectric interface seen from the denser side (eta inverted), with
-        // Fresnel, total internal reflection and energy compensation 1 / E_RT. Light leaving
-        // crosses the coat once and the fuzz (approximated as view-independent factors).
-        const vec3 eta_inside = vec3(1.0f) / eta_channels;
-        const float compensation =
-            openpbr_ggx_is_delta(alpha) ? 1.0f
-                                        : 1.0f / max(openpbr_dielectric_interface_albedo(mu, table_alpha, eta_inside.y), 0.05f);
+        // Inside: the dielectric interface seen from the denser side. Light leaving crosses the
+        // coat once and the fuzz (approximated as view-independent factors).
         const vec3 exit_factor =
             (coat_weight > 0.0f ? mix(vec3(1.0f), sqrt(inputs.coat_color), coat_weight) : vec3(1.0f)) *
             (fuzz_weight > 0.0f ? 1.0f - fuzz_weight * openpbr_fuzz_albedo_white(1.0f, inputs.fuzz_roughness) : 1.0f);
-        const float weight = opacity * compensation;
-        bsdf.transmission = openpbr_dielectric_lobe_init(vec3(weight), exit_factor * weight, alpha, eta_inside, true,
-                                                         OPENPBR_LOBE_ID_INTERFACE_FROM_INSIDE, view);
+        bsdf.transmission = openpbr_interface_lobe_prepare(opacity, exit_factor, alpha, table_alpha, eta_channels, view);
         const float total = opacity + (1.0f - opacity);
         bsdf.probability_transmission = opacity / total;
         bsdf.probability_pass_through = (1.0f - opacity) / total;
@@ -466,32 +355,21 @@ OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare_lobes_of(OPENPBR_IN(OpenPBR_Re
 
     // ---- Fuzz (spec "Fuzz"): F f_fuzz + (1 - F E_fuzz) f_coated ----
     float under_fuzz = opacity;
+    vec3 fuzz_albedo = vec3(0.0f);
     if (fuzz_weight > 0.0f)
     {
         const float fuzz_albedo_white = openpbr_fuzz_albedo_white(bsdf.fuzz_view.z, inputs.fuzz_roughness);
-        bsdf.fuzz = openpbr_fuzz_lobe_init(vec3(opacity * fuzz_weight), inputs.fuzz_color, inputs.fuzz_roughness, bsdf.fuzz_view);
+        bsdf.fuzz = openpbr_fuzz_lobe_prepare(inputs, opacity, bsdf.fuzz_view, fuzz_albedo);
         under_fuzz = opacity * (1.0f - fuzz_weight * fuzz_albedo_white);
     }
 
     // ---- Coat (spec "Coat"): C f_coat + lerp(1, T_coat (1 - E_coat), C) darkening f_base ----
     const float coat_mu = bsdf.coat_view.z;
-    float coat_albedo = 0.0f;
+    vec3 coat_albedo = vec3(0.0f);
     vec3 coat_view_transmittance = vec3(1.0f);
     if (coat_weight > 0.0f)
     {
-        const vec2 coat_alpha = openpbr_ggx_alpha(coat_roughness, inputs.coat_roughness_anisotropy);
-        const OpenPBR_GgxLobeAlbedo coat_lobe_albedo =
-            openpbr_ggx_lobe_albedo(coat_roughness, inputs.coat_roughness_anisotropy, coat_alpha, bsdf.coat_view);
-        const OpenPBR_Fresnel coat_fresnel = openpbr_make_dielectric_fresnel(coat_eta, vec3(1.0f));
-        const vec3 coat_compensation =
-            openpbr_multiple_scattering_compensation(vec3(openpbr_dielectric_f0(coat_eta)), coat_lobe_albedo.albedo);
-        bsdf.coat = openpbr_microfacet_reflection_lobe_init(coat_compensation * (under_fuzz * coat_weight), coat_alpha,
-                                                            coat_fresnel, OPENPBR_LOBE_ID_COAT, 1.0f, bsdf.coat_view);
-        const float coat_single_albedo =
-            bsdf.coat.is_delta ? openpbr_fresnel_dielectric(coat_mu, coat_eta)
-                               : openpbr_dielectric_reflection_albedo(coat_mu, coat_lobe_albedo.reflection_alpha, coat_eta) *
-                                     coat_lobe_albedo.reflection_scale;
-        coat_albedo = min(coat_single_albedo * coat_compensation.x, 1.0f);
+        bsdf.coat = openpbr_coat_lobe_prepare(inputs, coat_eta, under_fuzz, bsdf.coat_view, coat_albedo);
         bsdf.coat_absorbs = !(inputs.coat_color.x == 1.0f && inputs.coat_color.y == 1.0f && inputs.coat_color.z == 1.0f);
         if (bsdf.coat_absorbs)
         {
@@ -507,129 +385,70 @@ OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare_lobes_of(OPENPBR_IN(OpenPBR_Re
     // under the coat; the medium above it is the coat where there is one (IOR blended by
     // coat_weight, the spec's "depending on coat coverage"), otherwise the exterior medium.
     // Absolute IORs: the film's Fresnel model reads n_outside, n_film and n_base themselves.
-    const float film_weight = inputs.thin_film_weight;
     const float film_outside_ior = coat_weight > 0.0f ? mix(exterior_ior, inputs.coat_ior, coat_weight) : exterior_ior;
     const float dielectric_weight = 1.0f - metalness;
     vec3 specular_albedo = vec3(0.0f);
     if (dielectric_weight > 0.0f)
     {
-        // The film only where there is one: each copy of the Fresnel struct costs (prepare).
-        OpenPBR_Fresnel dielectric_fresnel = openpbr_make_dielectric_fresnel(eta_channels.y, inputs.specular_color);
-        if (film_weight > 0.0f)
-        {
-            dielectric_fresnel = openpbr_add_thin_film(dielectric_fresnel, film_weight, inputs.thin_film_thickness,
-                                                       inputs.thin_film_ior, film_outside_ior);
-        }
-        const vec3 specular_compensation =
-            openpbr_multiple_scattering_compensation(vec3(openpbr_dielectric_f0(eta_channels.y)), base_lobe_albedo.albedo);
-        const float plain_reflection_albedo =
-            openpbr_ggx_is_delta(alpha)
-                ? openpbr_fresnel_dielectric(mu, eta_channels.y)
-                : openpbr_dielectric_reflection_albedo(mu, base_lobe_albedo.reflection_alpha, eta_channels.y) *
-                      base_lobe_albedo.reflection_scale;
-        // With a film, E[f^R] moves by the film's change of the Fresnel factor averaged over the
-        // lobe, times the lobe's F = 1 albedo (the tables hold no film): exact for a mirror.
-        vec3 reflection_albedo = vec3(plain_reflection_albedo);
-        if (film_weight > 0.0f)
-        {
-            OpenPBR_Fresnel untinted = dielectric_fresnel;
-            untinted.tint = vec3(1.0f);
-            reflection_albedo = max(reflection_albedo + openpbr_film_fresnel_change(untinted, eta_channels.y, view, alpha) *
-                                                            base_lobe_albedo.albedo,
-                                    vec3(0.0f));
-        }
-        specular_albedo = openpbr_saturate(inputs.specular_color * specular_compensation * reflection_albedo);
-        bsdf.specular = openpbr_microfacet_reflection_lobe_init(specular_compensation * dielectric_weight, alpha,
-                                                                dielectric_fresnel, OPENPBR_LOBE_ID_SPECULAR_REFLECTION,
-                                                                1.0f, view);
+        bsdf.specular = openpbr_specular_reflection_lobe_prepare(inputs, eta_channels, alpha, base_lobe_albedo,
+                                                                 film_outside_ior, view, specular_albedo);
     }
     const vec3 under_specular = vec3(1.0f) - specular_albedo;
 
-    // What passes the specular interface splits into translucent, subsurface and diffuse.
+    // What passes the specular interface splits into translucent, subsurface and diffuse
+    // (spec "Base Substrate").
     const float translucent = inputs.transmission_weight;
     const float subsurface = (1.0f - translucent) * inputs.subsurface_weight;
     const float diffuse_fraction = (1.0f - translucent) * (1.0f - inputs.subsurface_weight);
     vec3 diffuse_weight = under_specular * (dielectric_weight * diffuse_fraction * inputs.base_weight);
     vec3 diffuse_color = inputs.base_color;
-    vec3 transmission_weight = vec3(0.0f);
-    vec3 thin_transmission_weight = vec3(0.0f);
+    vec3 diffuse_estimate = vec3(0.0f);
+    vec3 diffuse_transmission_estimate = vec3(0.0f);
+    vec3 transmission_estimate = vec3(0.0f);
+    vec3 thin_transmission_estimate = vec3(0.0f);
     // The albedo the coat's darkening sees of the slabs light enters (spec "Coat", darkening:
-    // E_b is "the albedos of the base slabs blended by their weights"): the subsurface slab
-    // returns subsurface_color (spec "Subsurface": its multiple-scattering albedo), the
-    // translucent slab its tint. The lobe itself refracts untinted; the medium applies the color.
+    // E_b is "the albedos of the base slabs blended by their weights").
     vec3 entering_slab_albedo = vec3(0.0f);
     const float entering = dielectric_weight * (translucent + subsurface);
     if (thin_walled && entering > 0.0f)
     {
-        // Thin-walled (spec "Thin-walled case"): subsurface becomes a thin scattering sheet,
-        // reflection 1/2 S (1 - g), transmission 1/2 S (1 + g), both diffuse lobes; the
-        // translucent base becomes an un-deflected transmission tinted by transmission_color.
+        // Thin-walled (spec "Thin-walled case"): subsurface becomes a thin scattering sheet
+        // whose reflection joins the diffuse lobe; the translucent base becomes an un-deflected
+        // transmission.
         if (subsurface > 0.0f)
         {
-            const float g = inputs.subsurface_scatter_anisotropy;
-            const vec3 sheet = under_specular * (dielectric_weight * subsurface);
-            diffuse_color = (diffuse_weight * inputs.base_color + sheet * (0.5f * (1.0f - g)) * inputs.subsurface_color) /
-                            max(diffuse_weight + sheet * (0.5f * (1.0f - g)), vec3(1e-12f));
-            diffuse_weight = diffuse_weight + sheet * (0.5f * (1.0f - g));
-            bsdf.diffuse_transmission = openpbr_diffuse_lobe_init(sheet * (0.5f * (1.0f + g)), inputs.subsurface_color,
-                                                                  inputs.base_diffuse_roughness, -1.0f, view);
+            bsdf.diffuse_transmission =
+                openpbr_diffuse_transmission_lobe_prepare(inputs, under_specular * (dielectric_weight * subsurface), view,
+                                                          diffuse_weight, diffuse_color, diffuse_transmission_estimate);
         }
         if (translucent > 0.0f)
         {
-            thin_transmission_weight = under_specular * (dielectric_weight * translucent) * inputs.transmission_color;
-            const float thin_compensation = 1.0f / max(base_lobe_albedo.albedo, 0.05f);
             bsdf.thin_transmission =
-                openpbr_microfacet_reflection_lobe_init(thin_transmission_weight * thin_compensation, alpha, no_fresnel,
-                                                        OPENPBR_LOBE_ID_SPECULAR_TRANSMISSION, -1.0f, view);
+                openpbr_thin_transmission_lobe_prepare(inputs, under_specular * (dielectric_weight * translucent), alpha,
+                                                       base_lobe_albedo, view, thin_transmission_estimate);
         }
     }
     else if (entering > 0.0f)
     {
-        // Refraction into the interior: translucent (tinted by transmission_color when there
-        // is no medium, spec "Translucent base") and subsurface (the medium does the rest).
-        const vec3 translucent_tint = inputs.transmission_depth > 0.0f ? vec3(1.0f) : inputs.transmission_color;
-        transmission_weight = under_specular * dielectric_weight * (translucent * translucent_tint + vec3(subsurface));
-        entering_slab_albedo =
-            under_specular * dielectric_weight * (translucent * translucent_tint + subsurface * inputs.subsurface_color);
-        // A delta lobe refracts exactly 1 - F: no compensation (the table near alpha = 0 smears
-        // the step at the critical angle when eta < 1 and gained up to 115 % there).
-        const float transmission_compensation =
-            openpbr_ggx_is_delta(alpha) ? 1.0f
-                                        : 1.0f / max(openpbr_dielectric_transmission_albedo(mu, table_alpha, eta_channels.y), 0.05f);
-        bsdf.transmission = openpbr_dielectric_lobe_init(zero, transmission_weight * transmission_compensation, alpha,
-                                                         eta_channels, false, OPENPBR_LOBE_ID_SPECULAR_TRANSMISSION, view);
+        // Refraction into the interior: translucent and subsurface (the medium does the rest).
+        bsdf.transmission =
+            openpbr_transmission_lobe_prepare(inputs, under_specular * dielectric_weight, translucent, subsurface, alpha,
+                                              table_alpha, eta_channels, view, transmission_estimate, entering_slab_albedo);
     }
     if (max(diffuse_weight.x, max(diffuse_weight.y, diffuse_weight.z)) > 0.0f)
     {
-        bsdf.diffuse = openpbr_diffuse_lobe_init(diffuse_weight, diffuse_color, inputs.base_diffuse_roughness, 1.0f, view);
+        bsdf.diffuse = openpbr_diffuse_lobe_prepare(inputs, diffuse_weight, diffuse_color, view, diffuse_estimate);
     }
 
-    // Metal: F82-tint Fresnel, F0 = base_weight base_color, scaled by specular_weight.
+    // Metal (spec "Base Substrate"): F82-tint Fresnel.
     vec3 metal_albedo = vec3(0.0f);
     if (metalness > 0.0f)
     {
-        const vec3 metal_f0 = inputs.base_weight * inputs.base_color;
-        OpenPBR_Fresnel metal_fresnel =
-            openpbr_make_f82_fresnel(metal_f0, inputs.specular_color, vec3(min(inputs.specular_weight, 1.0f)));
-        if (film_weight > 0.0f)
-        {
-            metal_fresnel = openpbr_add_thin_film(metal_fresnel, film_weight, inputs.thin_film_thickness,
-                                                  inputs.thin_film_ior, film_outside_ior);
-        }
-        const vec3 metal_compensation = openpbr_multiple_scattering_compensation(metal_f0, base_lobe_albedo.albedo);
-        bsdf.metal = openpbr_microfacet_reflection_lobe_init(metal_compensation * metalness, alpha, metal_fresnel,
-                                                             OPENPBR_LOBE_ID_METAL, 1.0f, view);
-        metal_albedo = openpbr_saturate(metal_compensation * openpbr_fresnel_evaluate(metal_fresnel, mu) *
-                                        (bsdf.metal.is_delta ? 1.0f : base_lobe_albedo.albedo)) *
-                       metalness;
+        bsdf.metal = openpbr_metal_lobe_prepare(inputs, alpha, base_lobe_albedo, film_outside_ior, view, metal_albedo);
     }
 
     // Albedo estimates of the base lobes (unit layering factor).
     const vec3 specular_estimate = specular_albedo * dielectric_weight;
-    const vec3 diffuse_estimate = bsdf.diffuse.albedo;
-    const vec3 diffuse_transmission_estimate = bsdf.diffuse_transmission.albedo;
-    const vec3 transmission_estimate = transmission_weight;
-    const vec3 thin_transmission_estimate = thin_transmission_weight;
 
     // Darkening (spec "Coat", darkening): lerp(1, Delta, C delta), Delta = (1 - K)/(1 - E_b K),
     // K = lerp(K_s, K_r, r_b); E_b the albedo of the whole base, its slabs blended by their mix
@@ -655,7 +474,7 @@ OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare_lobes_of(OPENPBR_IN(OpenPBR_Re
 
     // Layering factors on every base lobe: fuzz and opacity, coat absorption and darkening.
     bsdf.under_coat_constant = darkening * (under_fuzz * (1.0f - coat_weight));
-    bsdf.under_coat_absorbing = darkening * (under_fuzz * coat_weight * (1.0f - coat_albedo)) * coat_view_transmittance;
+    bsdf.under_coat_absorbing = darkening * (under_fuzz * coat_weight * (1.0f - coat_albedo.x)) * coat_view_transmittance;
     bsdf.under_coat_transmitted = bsdf.under_coat_constant + bsdf.under_coat_absorbing;
     // Estimate for selection: the light-side transmittance taken equal to the view side's.
     const vec3 under_reflected = bsdf.under_coat_constant + bsdf.under_coat_absorbing * coat_view_transmittance;
@@ -666,8 +485,8 @@ OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare_lobes_of(OPENPBR_IN(OpenPBR_Re
     const vec3 channel = openpbr_selection_channel_weights(path_throughput);
     const float white = openpbr_selection_white_scale(channel);
     const float fuzz_p =
-        fuzz_weight > 0.0f ? openpbr_luminance(openpbr_fuzz_lobe_albedo(bsdf.fuzz, bsdf.fuzz_view) * channel) : 0.0f;
-    const float coat_p = coat_weight > 0.0f ? under_fuzz * coat_weight * coat_albedo * white : 0.0f;
+        fuzz_weight > 0.0f ? openpbr_luminance(fuzz_albedo * channel) : 0.0f;
+    const float coat_p = coat_weight > 0.0f ? under_fuzz * coat_weight * coat_albedo.x * white : 0.0f;
     const float specular_p = dielectric_weight > 0.0f ? openpbr_luminance(specular_estimate * under_reflected * channel) : 0.0f;
     const float metal_p = metalness > 0.0f ? openpbr_luminance(metal_albedo * under_reflected * channel) : 0.0f;
     const float diffuse_p = openpbr_luminance(diffuse_estimate * under_reflected * channel);
@@ -1001,14 +820,14 @@ OPENPBR_FUNC OpenPBR_BsdfSample openpbr_sample(OPENPBR_IN(OpenPBR_PreparedBsdf) 
     OpenPBR_BsdfSample bsdf_sample;
     bsdf_sample.direction = openpbr_to_world(frame, lobe_sample.direction);
     bsdf_sample.lobe_type = lobe_sample.lobe_type;
-    if ((lobe_sample.lobe_type & OPENPBR_LOBE_TYPE_SPECULAR) != 0u)
+    if (openpbr_lobe_type_is_specular(lobe_sample.lobe_type))
     {
         // Delta lobe: the estimator is value / P(selecting the lobe). A reflecting delta under
         // the coat sees the coat's absorption along the mirrored direction.
         vec3 factor = delta_factor;
         if (OPENPBR_FEATURE_COAT && bsdf.coat_absorbs && !bsdf.inside &&
-            (lobe_sample.lobe_type & OPENPBR_LOBE_TYPE_REFLECTION) != 0u &&
-            (lobe_sample.lobe_type >> OPENPBR_LOBE_ID_SHIFT) != OPENPBR_LOBE_ID_COAT)
+            openpbr_lobe_type_is_reflection(lobe_sample.lobe_type) &&
+            openpbr_lobe_type_id(lobe_sample.lobe_type) != OPENPBR_LOBE_ID_COAT)
         {
             const float coat_mu = max(dot(bsdf_sample.direction, bsdf.coat_basis.normal), 0.0f);
             factor = bsdf.under_coat_constant +

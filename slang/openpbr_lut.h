@@ -2,10 +2,11 @@
 //
 // All tables live in one flat float array so every storage mode indexes them identically:
 //   OPENPBR_LUT_MODE_ARRAY   constants compiled into the code (default for C++, CUDA, Metal);
-//                            slang/generated/openpbr_lut_data.h, written by `openpbr lutgen`.
+//                            slang/generated/openpbr_lut_values.inc, written by `openpbr lutgen`.
 //   OPENPBR_LUT_MODE_BUFFER  a bound storage buffer named openpbr_lut_data (default for the
 //                            Vulkan paths: llvmpipe cannot compile large constant arrays);
-//                            the host uploads slang/generated/openpbr_lut.bin. In C++ the
+//                            the host uploads the same floats (openpbr_lut.bin, which the
+//                            build derives from the .inc). In C++ the
 //                            buffer is a pointer the application sets (openpbr_lut_data).
 //   OPENPBR_LUT_MODE_TEXTURE the including code defines OPENPBR_LUT_FETCH itself (e.g. from a
 //                            texel fetch of a 1D texture) before including this header.

@@ -13,18 +13,12 @@
 // Prints "ok: ..." per passed check and "FAIL: ..." per failure; exit status 1 on any failure.
 import fs from 'node:fs';
 
+import { codeOnly } from './source_text.mjs';
+
 let failures = 0;
 const ok = (what) => console.log(`ok:   ${what}`);
 const fail = (what) => { console.log(`FAIL: ${what}`); failures++; };
 const check = (condition, what, detail = '') => (condition ? ok(what) : fail(detail ? `${what}: ${detail}` : what));
-
-// The text with comments and string literals blanked (line structure kept).
-function codeOnly(text) {
-  return text
-    .replace(/\/\*[\s\S]*?\*\//g, (m) => m.replace(/[^\n]/g, ' '))
-    .replace(/\/\/[^\n]*/g, '')
-    .replace(/"(?:[^"\\\n]|\\.)*"/g, '""');
-}
 
 function lineOf(text, index) {
   return text.slice(0, index).split('\n').length;

@@ -11,6 +11,8 @@ import { createRequire } from 'node:module';
 import path from 'node:path';
 import { fileURLToPath, pathToFileURL } from 'node:url';
 
+import { codeLines } from './source_text.mjs';
+
 const TOOL = 'slangc.mjs';
 
 // Target name -> [name getCompileTargets() uses, output file extension for -o DIR].
@@ -115,36 +117,6 @@ function parseStage(value) {
 // ---------------------------------------------------------------------------------------------
 // Source preparation: #include inlining and import discovery
 
-// Splits one line into its code and comment parts so that directives inside /* */ or after //
-// are ignored. `inBlock` carries an open block comment over to the next line.
-function codeOfLine(line, inBlock) {
-  let code = '';
-  let i = 0;
-  while (i < line.length) {
-    if (inBlock) {
-      const end = line.indexOf('*/', i);
-      if (end < 0) return { code, inBlock: true };
-      i = end + 2;
-      inBlock = false;
-      code += ' ';
-    } else if (line.startsWith('//', i)) {
-      break;
-    } else if (line.startsWith('/*', i)) {
-      inBlock = true;
-      i += 2;
-    } else if (line[i] === '"') {
-      // Copy a string literal whole: "/*" inside it opens no comment.
-      let j = i + 1;
-      while (j < line.length && line[j] !== '"') j += line[j] === '\\' ? 2 : 1;
-      code += line.slice(i, j + 1);
-      i = j + 1;
-    } else {
-      code += line[i++];
-    }
-  }
-  return { code, inBlock };
-}
-
 const INCLUDE_RE = /^\s*#\s*include\s*(?:"([^"]+)"|<([^>]+)>)/;
 const PRAGMA_ONCE_RE = /^\s*#\s*pragma\s+once\b/;
 const CONDITIONAL_RE = /^\s*#\s*(if|ifdef|ifndef|endif)\b/;
@@ -179,16 +151,6 @@ function readSource(file) {
   } catch (err) {
     throw new CompileError(`cannot read '${file}': ${err.message}`);
   }
-}
-
-// Comment-free code of each line, so that directives inside /* */ or after // are ignored.
-function codeLines(lines) {
-  let inBlock = false;
-  return lines.map((line) => {
-    const parsed = codeOfLine(line, inBlock);
-    inBlock = parsed.inBlock;
-    return parsed.code;
-  });
 }
 
 // Index of the line that opens a classic include guard (#ifndef X then #define X as the first

@@ -2,7 +2,6 @@
 #include "host/checks/conformance.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstring>
 #include <fstream>
@@ -19,6 +18,7 @@
 #include "host/scene/features.h"
 #include "host/gpu/shipped_tables.h"
 #include "host/gpu/vulkan_runner.h"
+#include "host/support/stopwatch.h"
 #include "slang/openpbr.h"
 
 // The CPU build of the shared kernel body: the macros read and write these arrays, which the
@@ -807,9 +807,9 @@ ConformanceReport run_conformance(const std::vector<Material>& materials, const 
     const std::vector<float> packed = pack_materials(materials);
     const std::vector<float> queries = make_queries(options.query_count, materials.size(), options.seed);
 
-    const auto cpu_start = std::chrono::steady_clock::now();
+    const Stopwatch cpu_stopwatch;
     const std::vector<float> cpu_results = run_conformance_cpu(queries, packed);
-    const double cpu_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - cpu_start).count();
+    const double cpu_seconds = cpu_stopwatch.seconds();
     report.cpu_queries_per_second = cpu_seconds > 0.0 ? double(options.query_count) / cpu_seconds : 0.0;
     for (const float value : cpu_results)
     {
@@ -844,7 +844,7 @@ ConformanceReport run_conformance(const std::vector<Material>& materials, const 
             report.paths.push_back(result);
             continue;
         }
-        const auto start = std::chrono::steady_clock::now();
+        const Stopwatch stopwatch;
         std::vector<float> results;
         if (name == "cpu-ulp")
         {
@@ -857,7 +857,7 @@ ConformanceReport run_conformance(const std::vector<Material>& materials, const 
                                             : "CPU, -mfma -ffp-contract=fast -freciprocal-math, fast sqrt/normalize";
             results = name == "cpu-fma" ? run_conformance_cpu_fma(queries, packed) : run_conformance_cpu_fast(queries, packed);
         }
-        const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        const double seconds = stopwatch.seconds();
         result.queries_per_second = seconds > 0.0 ? double(queries.size() / OPENPBR_QUERY_FLOATS) / seconds : 0.0;
         result.executed = true;
         compare_with_cpu(result, queries, packed, results, cpu_results);

@@ -53,7 +53,7 @@ const std::vector<FurnaceConfig>& white_furnace_configs();
 // 0.1 up, the no-gain bound everywhere.
 const std::vector<float>& white_furnace_view_cosines();
 
-// Tolerances of the complete-BSDF issue.
+// Tolerances of the white furnace: what a white, energy-conserving material must meet.
 constexpr double furnace_tolerance = 0.005;   // |1 - albedo| for cos >= furnace_tolerance_min_cos
 constexpr double furnace_tolerance_min_cos = 0.1;
 constexpr double furnace_max_albedo = 1.005;  // at every angle

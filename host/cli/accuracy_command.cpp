@@ -1,5 +1,7 @@
-// accuracy_command.cpp - see accuracy_command.h.
-#include "host/cli/accuracy_command.h"
+// `openpbr bench accuracy`: error and time of every accuracy knob (host/studies/accuracy.h,
+// docs/accuracy-vs-time.md) as a table and, on request, JSON, CSV and an SVG plot. Exit status
+// 0, or 1 on errors.
+#include "host/cli/command.h"
 
 #include <fstream>
 #include <iostream>
@@ -31,18 +33,18 @@ struct AccuracyCommandSettings
 #define OPENPBR_DEFAULT_SOURCE_ROOT "."
 #endif
 
-CLI::App* add_bench_accuracy_subcommand(CLI::App& app)
+CLI::App* add_bench_accuracy_subcommand(CLI::App& parent, const CommandContext&)
 {
     const std::string default_cache_directory = OPENPBR_DEFAULT_ACCURACY_CACHE;
     const std::string repository_root = OPENPBR_DEFAULT_SOURCE_ROOT;
     CLI::App* bench = nullptr;
     try
     {
-        bench = app.get_subcommand("bench");
+        bench = parent.get_subcommand("bench");
     }
     catch (const CLI::OptionNotFound&)
     {
-        bench = app.add_subcommand("bench", "measurements of the BSDF's cost");
+        bench = parent.add_subcommand("bench", "measurements of the BSDF's cost");
         bench->require_subcommand(1);
     }
     CLI::App* command = bench->add_subcommand(
@@ -67,8 +69,7 @@ CLI::App* add_bench_accuracy_subcommand(CLI::App& app)
     command->add_flag("--no-compile", settings->no_compile, "skip the Slang compile-time rows");
     command->add_flag("--no-progress", settings->no_progress, "no progress bar on stderr");
     command->callback([settings]() {
-        try
-        {
+        run_command([&]() {
             AccuracyOptions options = settings->options;
             options.cache_directory = settings->cache_directory;
             options.compile = options.compile && !settings->no_compile;
@@ -90,12 +91,8 @@ CLI::App* add_bench_accuracy_subcommand(CLI::App& app)
                 write_text_file(settings->plot_path, accuracy_to_svg(rows));
                 std::cout << "wrote " << settings->plot_path << "\n";
             }
-        }
-        catch (const std::exception& error)
-        {
-            std::cerr << "openpbr bench accuracy: " << error.what() << "\n";
-            throw CLI::RuntimeError(1);
-        }
+            return 0;
+        });
     });
     return command;
 }

@@ -1,5 +1,7 @@
-// `openpbr features` and `openpbr bench specialization`: see features_command.h.
-#include "host/cli/features_command.h"
+// `openpbr features` (the smallest feature-toggle set that renders the materials exactly; exit 3
+// when a material needs more than --pipeline), `openpbr bench specialization` and
+// `openpbr bench gpu` (timings, no pass/fail).
+#include "host/cli/command.h"
 
 #include <fstream>
 #include <iostream>
@@ -23,34 +25,28 @@ void write_json(const std::string& path, const nlohmann::json& json)
     std::cout << "wrote " << path << "\n";
 }
 
-// Runs `body`, turning errors into CLI11's exit codes: 1 for errors, `refusal_code` for a
-// FeatureError (a material needs a feature the chosen pipeline lacks).
+// Runs `body` as a subcommand (run_command); a FeatureError (a material needs a feature the
+// chosen pipeline lacks) exits with `refusal_code`.
 template <typename Body>
 void run_reporting_errors(Body body, int refusal_code)
 {
-    try
-    {
-        body();
-    }
-    catch (const CLI::Error&)
-    {
-        throw;
-    }
-    catch (const FeatureError& error)
-    {
-        std::cerr << "openpbr: refused: " << error.what() << "\n";
-        throw CLI::RuntimeError(refusal_code);
-    }
-    catch (const std::exception& error)
-    {
-        std::cerr << "openpbr: error: " << error.what() << "\n";
-        throw CLI::RuntimeError(1);
-    }
+    run_command([&]() {
+        try
+        {
+            body();
+        }
+        catch (const FeatureError& error)
+        {
+            std::cerr << "openpbr: refused: " << error.what() << "\n";
+            return refusal_code;
+        }
+        return 0;
+    });
 }
 
 }  // namespace
 
-void add_features_subcommands(CLI::App& app, const std::string& materials_directory, const std::string& kernel_directory)
+CLI::App* add_features_subcommand(CLI::App& parent, const CommandContext& context)
 {
     struct FeaturesSettings
     {
@@ -59,20 +55,20 @@ void add_features_subcommands(CLI::App& app, const std::string& materials_direct
         std::vector<std::string> pipeline;
     };
     auto features = std::make_shared<FeaturesSettings>();
-    CLI::App* command = app.add_subcommand(
+    CLI::App* command = parent.add_subcommand(
         "features", "smallest feature-toggle set that renders the materials exactly, and its specialization info");
     command->add_option("files", features->files, "MaterialX files (default: every file of --materials-dir)");
     command->add_option("--json", features->json, "write the report as JSON");
     command->add_option("--pipeline", features->pipeline,
                         "check a pipeline's toggle set, e.g. coat,metal (exit 3 when a material needs more)")
         ->delimiter(',');
-    command->callback([features, &materials_directory]() {
+    command->callback([features, context]() {
         run_reporting_errors(
             [&]() {
                 std::vector<Material> materials;
                 if (features->files.empty())
                 {
-                    materials = load_material_directory(materials_directory);
+                    materials = load_material_directory(context.materials_directory);
                 }
                 for (const std::string& file : features->files)
                 {
@@ -101,7 +97,7 @@ void add_features_subcommands(CLI::App& app, const std::string& materials_direct
         bool cpu_only = false;
     };
     auto bench = std::make_shared<BenchSettings>();
-    CLI::App* bench_command = app.add_subcommand("bench", "measurements (timings, no pass/fail)");
+    CLI::App* bench_command = parent.add_subcommand("bench", "measurements (timings, no pass/fail)");
     bench_command->require_subcommand(1);
     CLI::App* specialization =
         bench_command->add_subcommand("specialization", "full versus specialized pipelines: lavapipe and CPU");
@@ -113,11 +109,11 @@ void add_features_subcommands(CLI::App& app, const std::string& materials_direct
     specialization->add_option("--path", bench->options.path, "GPU path, e.g. slang-spirv or glsl-spirv")
         ->capture_default_str();
     specialization->add_flag("--cpu-only", bench->cpu_only, "skip lavapipe");
-    specialization->callback([bench, &materials_directory, &kernel_directory]() {
+    specialization->callback([bench, context]() {
         run_reporting_errors(
             [&]() {
-                bench->options.materials_directory = materials_directory;
-                bench->options.kernel_directory = kernel_directory;
+                bench->options.materials_directory = context.materials_directory;
+                bench->options.kernel_directory = context.kernel_directory;
                 bench->options.gpu = !bench->cpu_only;
                 const nlohmann::json report = run_specialization_bench(bench->options);
                 std::cout << specialization_bench_text(report);
@@ -148,11 +144,11 @@ void add_features_subcommands(CLI::App& app, const std::string& materials_direct
         ->capture_default_str();
     gpu_command->add_flag("--no-vulkan", gpu->no_vulkan, "skip Vulkan");
     gpu_command->add_flag("--no-cuda", gpu->no_cuda, "skip the CUDA program");
-    gpu_command->callback([gpu, &materials_directory, &kernel_directory]() {
+    gpu_command->callback([gpu, context]() {
         run_reporting_errors(
             [&]() {
-                gpu->options.materials_directory = materials_directory;
-                gpu->options.kernel_directory = kernel_directory;
+                gpu->options.materials_directory = context.materials_directory;
+                gpu->options.kernel_directory = context.kernel_directory;
                 gpu->options.vulkan = !gpu->no_vulkan;
                 gpu->options.cuda = !gpu->no_cuda;
                 const nlohmann::json report = run_gpu_bench(gpu->options);
@@ -164,6 +160,7 @@ void add_features_subcommands(CLI::App& app, const std::string& materials_direct
             },
             1);
     });
+    return command;
 }
 
 }  // namespace openpbr::host

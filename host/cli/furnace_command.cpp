@@ -1,65 +1,64 @@
-#include "host/cli/furnace_command.h"
-
-#include <fstream>
+// `openpbr furnace`: the white furnace of host/checks/furnace.h as a table and, with --json FILE,
+// as {"configs": [{"name": s, "cos_theta": c, "albedo": [r, g, b], ...}]}. Exit status 0 when
+// every configuration is within its tolerance, 2 when one is not, 1 on errors (e.g. an
+// unwritable JSON path, or a --filter that matches nothing).
 #include <iostream>
+#include <memory>
+#include <stdexcept>
 #include <string>
-
-#include <CLI/CLI.hpp>
+#include <vector>
 
 #include "host/checks/furnace.h"
+#include "host/cli/command.h"
 #include "host/cli/output_files.h"
 
 namespace openpbr::host {
 
-struct FurnaceCommandOptions
+namespace {
+
+struct FurnaceSettings
 {
     FurnaceOptions furnace;
     std::string json_path;  // e.g. furnace.json; empty = table only
 };
 
-FurnaceCommand add_furnace_subcommand(CLI::App& app)
+int run_furnace(const FurnaceSettings& settings)
 {
-    FurnaceCommand command;
-    command.options = std::make_shared<FurnaceCommandOptions>();
-    command.subcommand = app.add_subcommand("furnace", "white furnace: directional albedo of white configurations");
-    command.subcommand->add_option("--json", command.options->json_path, "write {\"configs\": [...]} to this file");
-    command.subcommand->add_option("--samples", command.options->furnace.samples, "samples per configuration and view")
-        ->capture_default_str()->check(CLI::Range(std::uint64_t(1024), std::uint64_t(1) << 32));
-    command.subcommand->add_option("--filter", command.options->furnace.name_filter,
-                                   "only configurations whose name contains this, e.g. glass");
-    return command;
+    const std::vector<FurnaceRow> rows = run_white_furnace(settings.furnace);
+    if (rows.empty())
+    {
+        throw std::runtime_error("no configuration matches --filter '" + settings.furnace.name_filter + "'");
+    }
+    std::cout << furnace_to_text(rows);
+    if (!settings.json_path.empty())
+    {
+        write_json_file(settings.json_path, furnace_to_json(rows));
+        std::cout << "wrote " << settings.json_path << "\n";
+    }
+    std::size_t failures = 0;
+    for (const FurnaceRow& row : rows)
+    {
+        failures += row.within_tolerance ? 0 : 1;
+    }
+    std::cout << rows.size() - failures << " of " << rows.size() << " within tolerance (|1 - albedo| <= "
+              << furnace_tolerance << " for cos >= " << furnace_tolerance_min_cos << ", albedo <= " << furnace_max_albedo
+              << " everywhere)\n";
+    return failures == 0 ? 0 : 2;
 }
 
-int run_furnace_command(const FurnaceCommand& command)
+}  // namespace
+
+CLI::App* add_furnace_subcommand(CLI::App& parent, const CommandContext&)
 {
-    try
-    {
-        const std::vector<FurnaceRow> rows = run_white_furnace(command.options->furnace);
-        if (rows.empty())
-        {
-            throw std::runtime_error("no configuration matches --filter '" + command.options->furnace.name_filter + "'");
-        }
-        std::cout << furnace_to_text(rows);
-        if (!command.options->json_path.empty())
-        {
-            write_json_file(command.options->json_path, furnace_to_json(rows));
-            std::cout << "wrote " << command.options->json_path << "\n";
-        }
-        std::size_t failures = 0;
-        for (const FurnaceRow& row : rows)
-        {
-            failures += row.within_tolerance ? 0 : 1;
-        }
-        std::cout << rows.size() - failures << " of " << rows.size() << " within tolerance (|1 - albedo| <= "
-                  << furnace_tolerance << " for cos >= " << furnace_tolerance_min_cos << ", albedo <= " << furnace_max_albedo
-                  << " everywhere)\n";
-        return failures == 0 ? 0 : 2;
-    }
-    catch (const std::exception& error)
-    {
-        std::cerr << "openpbr furnace: error: " << error.what() << "\n";
-        return 1;
-    }
+    auto settings = std::make_shared<FurnaceSettings>();
+    CLI::App* command = parent.add_subcommand("furnace", "white furnace: directional albedo of white configurations");
+    command->add_option("--json", settings->json_path, "write {\"configs\": [...]} to this file");
+    command->add_option("--samples", settings->furnace.samples, "samples per configuration and view")
+        ->capture_default_str()->check(CLI::Range(std::uint64_t(1024), std::uint64_t(1) << 32));
+    command->add_option("--filter", settings->furnace.name_filter,
+                        "only configurations whose name contains this, e.g. glass");
+    command->callback([settings]() { run_command([&]() { return run_furnace(*settings); }); });
+    return command;
 }
 
 }  // namespace openpbr::host

@@ -1,11 +1,15 @@
-// The `openpbr render` subcommand; see render_command.h.
-#include "host/cli/render_command.h"
+// `openpbr render`: gallery, furnace and CPU-versus-Vulkan comparison renders of the preview path
+// tracer (host/preview/render.h). Exit status 0, or 1 on errors, a failed furnace check or a
+// failed comparison.
+#include "host/cli/command.h"
 
 #include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
+#include <memory>
 #include <sstream>
+#include <string>
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
@@ -81,13 +85,16 @@ int cell_from_size(const std::string& size, std::size_t count, int columns) {
 
 }  // namespace
 
-RenderCommand add_render_subcommand(CLI::App& app) {
-    RenderCommand command;
-    command.options = std::make_shared<RenderCommandOptions>();
-    RenderCommandOptions& options = *command.options;
-    CLI::App* render = app.add_subcommand(
+// Runs a parsed render command; returns the exit status (0 on success; 1 on errors, a failed
+// furnace check or a failed comparison). Prints the output file names.
+int run_render_command(const RenderCommandOptions& options, const std::string& materials_directory,
+                       const std::string& kernel_directory);
+
+CLI::App* add_render_subcommand(CLI::App& parent, const CommandContext& context) {
+    auto settings = std::make_shared<RenderCommandOptions>();
+    RenderCommandOptions& options = *settings;
+    CLI::App* render = parent.add_subcommand(
         "render", "path-trace a labelled gallery of material spheres (default: every bundled material)");
-    command.subcommand = render;
     render->add_option("--backend", options.backend, "cpu or vulkan")->capture_default_str()
         ->check(CLI::IsMember({"cpu", "vulkan"}));
     render->add_option("--materials", options.material_files, "material files (default: the materials directory)");
@@ -113,12 +120,16 @@ RenderCommand add_render_subcommand(CLI::App& app) {
     render->add_option("--json", options.json, "write timings and checks as JSON");
     render->add_option("-o,--output", options.output,
                        "output PNG (default openpbr_gallery.png or openpbr_furnace.png)");
-    return command;
+    render->callback([settings, context]() {
+        run_command([&]() {
+            return run_render_command(*settings, context.materials_directory, context.kernel_directory);
+        });
+    });
+    return render;
 }
 
-int run_render_command(const RenderCommand& command, const std::string& materials_directory,
+int run_render_command(const RenderCommandOptions& options, const std::string& materials_directory,
                        const std::string& kernel_directory) {
-    const RenderCommandOptions& options = *command.options;
     try {
         std::vector<Material> materials;
         if (options.furnace) {

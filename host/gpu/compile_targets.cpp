@@ -6,12 +6,13 @@
 
 #include <algorithm>
 #include <cerrno>
-#include <chrono>
 #include <cstring>
 #include <filesystem>
 #include <iomanip>
 #include <sstream>
 #include <stdexcept>
+
+#include "host/support/stopwatch.h"
 
 // Set by the build (targets/CMakeLists.txt): the repository root, node, and the native slangc
 // of the CMake cache variable OPENPBR_SLANGC (empty: node + targets/slangc.mjs).
@@ -75,7 +76,7 @@ double run_command(const std::vector<std::string>& arguments)
         argv.push_back(const_cast<char*>(argument.c_str()));
     }
     argv.push_back(nullptr);
-    const auto start = std::chrono::steady_clock::now();
+    const Stopwatch stopwatch;
     pid_t pid = 0;
     const int spawn_error = posix_spawnp(&pid, argv[0], nullptr, nullptr, argv.data(), environ);
     if (spawn_error != 0)
@@ -95,7 +96,7 @@ double run_command(const std::vector<std::string>& arguments)
         throw std::runtime_error("command failed (status " + std::to_string(WIFEXITED(status) ? WEXITSTATUS(status) : -1) +
                                  "): " + quote_command(arguments));
     }
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return stopwatch.seconds();
 }
 
 std::vector<std::string> slang_command(const CompileTargetsOptions& options, const std::string& target)

@@ -5,13 +5,14 @@
 #include <algorithm>
 #include <atomic>
 #include <cctype>
-#include <chrono>
 #include <fstream>
 #include <iostream>
 #include <mutex>
 #include <set>
 #include <sstream>
 #include <utility>
+
+#include "host/support/stopwatch.h"
 
 namespace openpbr::host {
 
@@ -36,11 +37,6 @@ constexpr uint32_t required_api_version = VK_API_VERSION_1_2;
 
 const char* const validation_layer_name = "VK_LAYER_KHRONOS_validation";
 
-using Clock = std::chrono::steady_clock;
-
-double milliseconds_since(const Clock::time_point start) {
-    return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
 
 void check(const VkResult result, const char* const call_name) {
     if (result != VK_SUCCESS) {
@@ -522,7 +518,7 @@ struct PipelineState {
 ComputePipeline::ComputePipeline(const VulkanContext& context,
                                  const ComputePipelineDescription& description)
     : state_(std::make_unique<PipelineState>()) {
-    const Clock::time_point start = Clock::now();
+    const Stopwatch create_stopwatch;
     PipelineState& state = *state_;
     state.context = context.state();
     const ContextState& context_state = *state.context;
@@ -631,7 +627,7 @@ ComputePipeline::ComputePipeline(const VulkanContext& context,
     // The pipeline holds what it needs; the module is dead weight from here on.
     vkDestroyShaderModule(device, state.shader_module, nullptr);
     state.shader_module = VK_NULL_HANDLE;
-    state.create_ms = milliseconds_since(start);
+    state.create_ms = create_stopwatch.milliseconds();
 }
 
 ComputePipeline::ComputePipeline(ComputePipeline&&) noexcept = default;
@@ -972,7 +968,7 @@ DispatchTiming run(ComputePipeline& pipeline, const std::vector<BufferBinding>& 
 
     // Upload: one buffer and one allocation per binding. Tests bind a handful of buffers,
     // so sub-allocation would be complexity without benefit.
-    const Clock::time_point upload_start = Clock::now();
+    const Stopwatch upload_stopwatch;
     resources.buffers.resize(buffers.size());
     if (request.device_local) resources.device_buffers.resize(buffers.size());
     for (std::size_t index = 0; index < buffers.size(); ++index) {
@@ -1026,7 +1022,7 @@ DispatchTiming run(ComputePipeline& pipeline, const std::vector<BufferBinding>& 
         std::memset(target.mapped, 0, static_cast<std::size_t>(target.size));
         if (data_size > 0) std::memcpy(target.mapped, binding.data->data(), binding.data->size());
     }
-    timing.upload_ms = milliseconds_since(upload_start);
+    timing.upload_ms = upload_stopwatch.milliseconds();
 
     // Descriptor set 0. A pipeline without bindings gets no set at all, because a pool with
     // no pool sizes is not allowed.
@@ -1224,11 +1220,11 @@ DispatchTiming run(ComputePipeline& pipeline, const std::vector<BufferBinding>& 
     std::vector<double> device_samples;
     for (int repeat = 0; repeat < request.repeats; ++repeat) {
         if (repeat > 0) check(vkResetFences(device, 1, &resources.fence), "vkResetFences");
-        const Clock::time_point dispatch_start = Clock::now();
+        const Stopwatch dispatch_stopwatch;
         check(vkQueueSubmit(context.queue, 1, &submit_info, resources.fence), "vkQueueSubmit");
         resources.submitted = true;
         check(vkWaitForFences(device, 1, &resources.fence, VK_TRUE, UINT64_MAX), "vkWaitForFences");
-        host_samples.push_back(milliseconds_since(dispatch_start));
+        host_samples.push_back(dispatch_stopwatch.milliseconds());
 
         if (use_timestamps) {
             uint64_t stamps[2] = {0, 0};
@@ -1253,7 +1249,7 @@ DispatchTiming run(ComputePipeline& pipeline, const std::vector<BufferBinding>& 
     timing.dispatch_ms = steady(host_samples);
     if (use_timestamps) timing.device_dispatch_ms = steady(device_samples);
 
-    const Clock::time_point readback_start = Clock::now();
+    const Stopwatch readback_stopwatch;
     if (request.device_local) {
         // Device-local results back into their staging buffers, then read as usual.
         check(vkAllocateCommandBuffers(device, &command_info, &resources.readback_command_buffer),
@@ -1287,7 +1283,7 @@ DispatchTiming run(ComputePipeline& pipeline, const std::vector<BufferBinding>& 
             std::memcpy(binding.data->data(), resources.buffers[index].mapped, binding.data->size());
         }
     }
-    timing.readback_ms = milliseconds_since(readback_start);
+    timing.readback_ms = readback_stopwatch.milliseconds();
     return timing;
 }
 

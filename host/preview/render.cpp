@@ -431,7 +431,7 @@ std::vector<Material> furnace_materials() {
     subsurface.subsurface_weight = 1.0f;
     subsurface.subsurface_radius_scale = glm::vec3(1.0f);
     subsurface.subsurface_radius = 0.3f;
-    // Beyond the list of the issue: rough refraction, and a cut-out (opacity) surface.
+    // Two more cases: rough refraction, and a cut-out (opacity) surface.
     OpenPBR_ResolvedInputs& rough_glass = white("Rough glass");
     rough_glass.transmission_weight = 1.0f;
     rough_glass.specular_roughness = 0.3f;

@@ -109,7 +109,7 @@ struct Scene
     std::vector<Material> materials;
 };
 
-// The scenes of the issue, from the bundled materials by what they need.
+// The benchmark scenes (docs/performance.md), from the bundled materials by what they need.
 std::vector<Scene> make_scenes(const std::vector<Material>& library)
 {
     const auto select = [&](const std::function<bool(std::uint32_t)>& wanted) {

@@ -1,13 +1,11 @@
 // fuzz_fit.cpp - see fuzz_fit.h for the model, the conventions and the table layout.
 #include "host/tables/fuzz_fit.h"
 #include "host/support/random.h"
-#include "host/support/stopwatch.h"
 
 #include <algorithm>
 #include <array>
 #include <atomic>
 #include <chrono>
-#include <cinttypes>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -654,21 +652,6 @@ std::vector<float> read_fuzz_values_inc(const std::filesystem::path& path)
     return values;
 }
 
-void write_fuzz_binary(const std::filesystem::path& path, const std::vector<float>& data)
-{
-    std::string bytes(data.size() * 4, '\0');
-    for (std::size_t i = 0; i < data.size(); ++i)
-    {
-        std::uint32_t bits;
-        std::memcpy(&bits, &data[i], 4);
-        for (int k = 0; k < 4; ++k)
-        {
-            bytes[i * 4 + std::size_t(k)] = char((bits >> (8 * k)) & 0xFFu);
-        }
-    }
-    write_atomically(path, bytes);
-}
-
 std::vector<float> read_fuzz_binary(const std::filesystem::path& path, std::size_t expected_count)
 {
     const std::string bytes = read_all(path);
@@ -687,86 +670,6 @@ std::vector<float> read_fuzz_binary(const std::filesystem::path& path, std::size
         std::memcpy(&values[i], &bits, 4);
     }
     return values;
-}
-
-int fuzz_fit_main(int argc, const char* const* argv)
-{
-    FuzzFitOptions options;
-    std::filesystem::path out_dir = "slang/generated";
-    options.progress = true;
-    try
-    {
-        for (int i = 1; i < argc; ++i)
-        {
-            const std::string argument = argv[i];
-            const auto value = [&]() -> std::string {
-                if (i + 1 >= argc)
-                {
-                    throw std::invalid_argument(argument + " needs a value");
-                }
-                return argv[++i];
-            };
-            if (argument == "--photons")
-            {
-                options.photons = std::stoull(value());
-            }
-            else if (argument == "--size")
-            {
-                options.size = std::stoi(value());
-            }
-            else if (argument == "--threads")
-            {
-                options.threads = std::stoi(value());
-            }
-            else if (argument == "--seed")
-            {
-                options.seed = std::stoull(value());
-            }
-            else if (argument == "--out-dir")
-            {
-                out_dir = value();
-            }
-            else if (argument == "--quiet")
-            {
-                options.progress = false;
-            }
-            else
-            {
-                throw std::invalid_argument("unknown option '" + argument + "'");
-            }
-        }
-        const Stopwatch stopwatch;
-        std::vector<FuzzCellReport> report;
-        const std::vector<float> table = generate_fuzz_table(options, &report);
-        const double seconds = stopwatch.seconds();
-        char description[256];
-        std::snprintf(description, sizeof(description),
-                      "fuzz LTC table (host/tables/fuzz_fit.cpp): %d x %d, channels a, b, R; %" PRIu64
-                      " photons/cell, seed %" PRIu64,
-                      options.size, options.size, options.photons, options.seed);
-        write_fuzz_values_inc(out_dir / "openpbr_fuzz_ltc_values.inc", table, description);
-        write_fuzz_binary(out_dir / "openpbr_fuzz_ltc.bin", table);
-        double worst_l2 = 0.0;
-        double mean_tv = 0.0;
-        int fitted = 0;
-        for (const FuzzCellReport& cell : report)
-        {
-            if (cell.fit.fitted)
-            {
-                worst_l2 = std::max(worst_l2, cell.fit.relative_l2_error);
-                mean_tv += cell.fit.total_variation;
-                ++fitted;
-            }
-        }
-        std::printf("fuzz fit: %zu cells (%d fitted) in %.1f s; mean total variation %.4f, worst relative L2 %.4f\n",
-                    report.size(), fitted, seconds, fitted ? mean_tv / fitted : 0.0, worst_l2);
-        return 0;
-    }
-    catch (const std::exception& error)
-    {
-        std::fprintf(stderr, "fuzz fit: %s\n", error.what());
-        return 1;
-    }
 }
 
 }  // namespace openpbr::host

@@ -162,12 +162,6 @@ FuzzCellReport generate_fuzz_cell(const FuzzFitOptions& options, int mu_index, i
 void write_fuzz_values_inc(const std::filesystem::path& path, const std::vector<float>& data,
                            const std::string& comment = std::string());
 std::vector<float> read_fuzz_values_inc(const std::filesystem::path& path);
-void write_fuzz_binary(const std::filesystem::path& path, const std::vector<float>& data);
 std::vector<float> read_fuzz_binary(const std::filesystem::path& path, std::size_t expected_count = 0);
-
-// Command-line style entry for a host tool: options --photons N, --size N, --threads N,
-// --seed N, --out-dir DIR (default slang/generated), --quiet. Writes both files and prints a
-// summary; returns a process exit code.
-int fuzz_fit_main(int argc, const char* const* argv);
 
 }  // namespace openpbr::host

@@ -32,12 +32,16 @@
 // pass-through t = -o with weight G2(o, -o) / G1(o) = (1 + Lambda) / (1 + 2 Lambda), which the
 // compensation 1 / E_T0 (E_T0 of eta = 1 is that same value) turns into 1. Reflection keeps its
 // rough lobe: at grazing views the Fresnel factor of a nearly index-matched interface is large.
+// Two uses, each with its prepare: light entering the interior (openpbr_transmission_lobe_prepare)
+// and the interface seen from inside (openpbr_interface_lobe_prepare).
 #ifndef OPENPBR_DIELECTRIC_LOBE_H
 #define OPENPBR_DIELECTRIC_LOBE_H
 
 #include "openpbr_lobe_common.h"
 #include "../math/openpbr_fresnel.h"
 #include "../math/openpbr_vndf.h"
+#include "../openpbr_lut.h"
+#include "../openpbr_resolved_inputs.h"
 
 // Smallest view cosine the rough lobe scatters at, e.g. 1e-18: GGX Lambda squares the cosine,
 // which must stay a normal float (1e-18^2 = 1e-36 > 1.2e-38).
@@ -87,6 +91,14 @@ OPENPBR_FUNC OpenPBR_DielectricLobe openpbr_dielectric_lobe_init(vec3 reflection
     lobe.g1_view = 1.0f / (1.0f + lobe.lambda_view);
     lobe.lobe_id = lobe_id;
     return lobe;
+}
+
+// A lobe of weight 0 that prepare leaves in place of an absent one (never evaluated: its
+// selection probability is 0); every argument is a constant, so it folds to stores of constants.
+OPENPBR_FUNC OpenPBR_DielectricLobe openpbr_dielectric_lobe_empty(uint lobe_id)
+{
+    return openpbr_dielectric_lobe_init(vec3(0.0f), vec3(0.0f), vec2(1.0f), vec3(1.0f), false, lobe_id,
+                                        vec3(0.0f, 0.0f, 1.0f));
 }
 
 // Probability of choosing transmission at a microfacet with Fresnel reflectance f.
@@ -237,6 +249,54 @@ OPENPBR_FUNC OpenPBR_LobeSample openpbr_dielectric_lobe_sample(OPENPBR_IN(OpenPB
         lobe_sample.delta_weight = weight * (channel_mask * shadowing);
     }
     return lobe_sample;
+}
+
+// OpenPBR 1.1 "Translucent base" and "Subsurface": refraction into the interior, the
+// transmission-only form. layer_weight is what passes the specular reflection per unit of
+// base, e.g. (1 - E[f^R_specular]) (1 - base_metalness); translucent and subsurface are the
+// shares of the two slabs light enters (their sum at most 1). The translucent share is tinted
+// by transmission_color when there is no medium (transmission_depth 0); otherwise, and for
+// subsurface, the interior medium applies the color. Compensated by 1 / E_T0 of the rough
+// lobe. `albedo` receives the weight the lobe refracts (its selection estimate);
+// `slab_albedo` the albedo the coat's darkening sees of the entering slabs: the subsurface
+// slab returns subsurface_color (spec "Subsurface": its multiple-scattering albedo), the
+// translucent slab its tint.
+OPENPBR_FUNC OpenPBR_DielectricLobe openpbr_transmission_lobe_prepare(OPENPBR_IN(OpenPBR_ResolvedInputs) inputs,
+                                                                      vec3 layer_weight, float translucent,
+                                                                      float subsurface, vec2 alpha, float table_alpha,
+                                                                      vec3 eta_channels, vec3 view,
+                                                                      OPENPBR_OUT(vec3) albedo,
+                                                                      OPENPBR_OUT(vec3) slab_albedo)
+{
+    const float mu = view.z;
+    const vec3 translucent_tint = inputs.transmission_depth > 0.0f ? vec3(1.0f) : inputs.transmission_color;
+    const vec3 transmission_weight = layer_weight * (translucent * translucent_tint + vec3(subsurface));
+    albedo = transmission_weight;
+    slab_albedo = layer_weight * (translucent * translucent_tint + subsurface * inputs.subsurface_color);
+    // A delta lobe refracts exactly 1 - F: no compensation (the table near alpha = 0 smears
+    // the step at the critical angle when eta < 1 and gained up to 115 % there).
+    const float transmission_compensation =
+        openpbr_ggx_is_delta(alpha) ? 1.0f
+                                    : 1.0f / max(openpbr_dielectric_transmission_albedo(mu, table_alpha, eta_channels.y), 0.05f);
+    return openpbr_dielectric_lobe_init(vec3(0.0f), transmission_weight * transmission_compensation, alpha, eta_channels,
+                                        false, OPENPBR_LOBE_ID_SPECULAR_TRANSMISSION, view);
+}
+
+// The dielectric interface seen from the denser side, inside a non-thin-walled object (eta
+// inverted): reflection and refraction with Fresnel and total internal reflection, compensated
+// by 1 / E_RT. layer_weight is the geometry opacity; exit_factor what light leaving crosses
+// above the interface (the coat once, the fuzz), applied to the refracted part only.
+OPENPBR_FUNC OpenPBR_DielectricLobe openpbr_interface_lobe_prepare(float layer_weight, vec3 exit_factor, vec2 alpha,
+                                                                   float table_alpha, vec3 eta_channels, vec3 view)
+{
+    const float mu = view.z;
+    const vec3 eta_inside = vec3(1.0f) / eta_channels;
+    const float compensation =
+        openpbr_ggx_is_delta(alpha) ? 1.0f
+                                    : 1.0f / max(openpbr_dielectric_interface_albedo(mu, table_alpha, eta_inside.y), 0.05f);
+    const float weight = layer_weight * compensation;
+    return openpbr_dielectric_lobe_init(vec3(weight), exit_factor * weight, alpha, eta_inside, true,
+                                        OPENPBR_LOBE_ID_INTERFACE_FROM_INSIDE, view);
 }
 
 OPENPBR_NAMESPACE_END

@@ -8,11 +8,14 @@
 // see docs/spec-notes.md 4.1). Sigma = 0 reduces exactly to Lambert. Reciprocal.
 // Sampling: cosine-weighted (unbiased; the weight pi f / rho is bounded by about 1.3).
 // The same lobe mirrored below the surface is the thin-walled diffuse transmission.
+// Two uses, each with its prepare: the base's diffuse reflection (openpbr_diffuse_lobe_prepare)
+// and the thin-walled subsurface sheet (openpbr_diffuse_transmission_lobe_prepare).
 #ifndef OPENPBR_DIFFUSE_LOBE_H
 #define OPENPBR_DIFFUSE_LOBE_H
 
 #include "openpbr_lobe_common.h"
 #include "../math/openpbr_warps.h"
+#include "../openpbr_resolved_inputs.h"
 
 #define OPENPBR_EON_C1 0.28779763f   // 1/2 - 2/(3 pi)
 #define OPENPBR_EON_C2 0.07252938f   // 2/3 - 28/(15 pi)
@@ -119,6 +122,41 @@ OPENPBR_FUNC OpenPBR_LobeSample openpbr_diffuse_lobe_sample(OPENPBR_IN(OpenPBR_D
         transmits ? openpbr_lobe_type(OPENPBR_LOBE_ID_DIFFUSE_TRANSMISSION,
                                       OPENPBR_LOBE_TYPE_TRANSMISSION | OPENPBR_LOBE_TYPE_DIFFUSE)
                   : openpbr_lobe_type(OPENPBR_LOBE_ID_DIFFUSE, OPENPBR_LOBE_TYPE_REFLECTION | OPENPBR_LOBE_TYPE_DIFFUSE));
+}
+
+// OpenPBR 1.1 "Glossy-diffuse": the base's diffuse reflection of roughness
+// base_diffuse_roughness, weight `weight` (what passes the specular reflection times the
+// diffuse share and base_weight) and color `color` (base_color, blended with the sheet's
+// reflection by openpbr_diffuse_transmission_lobe_prepare on a thin-walled base). `albedo`
+// receives its directional albedo at the view, weight included.
+OPENPBR_FUNC OpenPBR_DiffuseLobe openpbr_diffuse_lobe_prepare(OPENPBR_IN(OpenPBR_ResolvedInputs) inputs, vec3 weight,
+                                                              vec3 color, vec3 view, OPENPBR_OUT(vec3) albedo)
+{
+    const OpenPBR_DiffuseLobe lobe = openpbr_diffuse_lobe_init(weight, color, inputs.base_diffuse_roughness, 1.0f, view);
+    albedo = lobe.albedo;
+    return lobe;
+}
+
+// OpenPBR 1.1 "Thin-walled case", subsurface: a thin scattering sheet of weight `sheet`, which
+// reflects 1/2 S (1 - g) and transmits 1/2 S (1 + g), S = subsurface_color and
+// g = subsurface_scatter_anisotropy, both diffuse lobes. Returns the transmission (the lobe
+// mirrored below); the reflected half joins the base's diffuse reflection, whose
+// reflection_weight and reflection_color (weight and base_color before the call) it updates
+// to the weighted blend. `albedo` receives the transmission's directional albedo at the view.
+OPENPBR_FUNC OpenPBR_DiffuseLobe openpbr_diffuse_transmission_lobe_prepare(OPENPBR_IN(OpenPBR_ResolvedInputs) inputs,
+                                                                           vec3 sheet, vec3 view,
+                                                                           OPENPBR_INOUT(vec3) reflection_weight,
+                                                                           OPENPBR_INOUT(vec3) reflection_color,
+                                                                           OPENPBR_OUT(vec3) albedo)
+{
+    const float g = inputs.subsurface_scatter_anisotropy;
+    reflection_color = (reflection_weight * reflection_color + sheet * (0.5f * (1.0f - g)) * inputs.subsurface_color) /
+                       max(reflection_weight + sheet * (0.5f * (1.0f - g)), vec3(1e-12f));
+    reflection_weight = reflection_weight + sheet * (0.5f * (1.0f - g));
+    const OpenPBR_DiffuseLobe lobe = openpbr_diffuse_lobe_init(sheet * (0.5f * (1.0f + g)), inputs.subsurface_color,
+                                                               inputs.base_diffuse_roughness, -1.0f, view);
+    albedo = lobe.albedo;
+    return lobe;
 }
 
 OPENPBR_NAMESPACE_END

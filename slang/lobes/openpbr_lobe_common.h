@@ -1,11 +1,22 @@
-// What every lobe shares: the sample record and the lobe-type bits.
-// A lobe is a struct plus free functions with the same shape for every lobe:
-//   openpbr_<lobe>_init(...)                    -> struct, from material data and the view
-//   openpbr_<lobe>_eval(lobe, view, light)      -> BSDF x |cos(light)| (vec3), local frame
-//   openpbr_<lobe>_pdf(lobe, view, light)       -> solid-angle density of _sample
-//   openpbr_<lobe>_sample(lobe, view, u)        -> OpenPBR_LobeSample
-//   openpbr_<lobe>_albedo(lobe, view)           -> estimate of the directional albedo (vec3)
-// Directions are unit vectors in the lobe's local frame pointing away from the surface.
+// What every lobe shares: the sample record, the lobe-type bits and the shape of a lobe.
+// A lobe is a struct (OpenPBR_<Kind>Lobe) plus free functions with the same shape for every lobe:
+//   openpbr_<use>_lobe_prepare(inputs, layer weight, ..., view, out albedo) -> struct
+//       one use of the lobe in OpenPBR 1.1 (e.g. the coat, the metal, the thin-walled sheet),
+//       set up from the resolved inputs, the weight the layers above leave it and the view;
+//       `albedo` receives its directional-albedo estimate at the view (each prepare says which
+//       weights it includes), which openpbr_bsdf.h feeds to layering and lobe selection (the
+//       interface seen from inside, selected by opacity alone, has none).
+//       A lobe file holds the prepare of every use of its lobe.
+//   openpbr_<kind>_lobe_init(weight, ..., view) -> struct, from numbers already derived (what
+//       prepare calls; tests call it directly)
+//   openpbr_<kind>_lobe_empty(...)              -> the weight-0 struct of an absent lobe
+//   openpbr_<kind>_lobe_eval(lobe, view, light) -> BSDF x |cos(light)| (vec3), local frame
+//   openpbr_<kind>_lobe_pdf(lobe, view, light)  -> solid-angle density of _sample
+//   openpbr_<kind>_lobe_sample(lobe, view, u)   -> OpenPBR_LobeSample
+//   openpbr_<kind>_lobe_albedo(lobe, view)      -> vec3, where the struct alone gives it (fuzz)
+// openpbr_bsdf.h composes the prepared lobes (layering, darkening, selection weights) and
+// dispatches eval, pdf and sample over them. Directions are unit vectors in the lobe's local
+// frame pointing away from the surface.
 #ifndef OPENPBR_LOBE_COMMON_H
 #define OPENPBR_LOBE_COMMON_H
 

@@ -24,6 +24,8 @@
 import fs from 'node:fs';
 import path from 'node:path';
 
+import { codeOfLine } from '../source_text.mjs';
+
 const TOOL = 'generate_hlsl.mjs';
 const DIALECT = { vec2: 'float2', vec3: 'float3', vec4: 'float4', mix: 'lerp', fract: 'frac', inversesqrt: 'rsqrt' };
 const SPLAT = { vec2: 'openpbr_splat2', vec3: 'openpbr_splat3', vec4: 'openpbr_splat4' };
@@ -95,7 +97,7 @@ function logicalLines(text) {
     const start = i;
     let code = '';
     for (;;) {
-      const stripped = stripComments(physical[i], inBlock);
+      const stripped = codeOfLine(physical[i], inBlock);
       inBlock = stripped.inBlock;
       code += stripped.code;
       if (physical[i].endsWith('\\') && i + 1 < physical.length) {
@@ -108,33 +110,6 @@ function logicalLines(text) {
     result.push({ lines: physical.slice(start, i + 1), code, number: start + 1 });
   }
   return result;
-}
-
-function stripComments(line, inBlock) {
-  let code = '';
-  let i = 0;
-  while (i < line.length) {
-    if (inBlock) {
-      const end = line.indexOf('*/', i);
-      if (end < 0) return { code, inBlock: true };
-      i = end + 2;
-      inBlock = false;
-      code += ' ';
-    } else if (line.startsWith('//', i)) {
-      break;
-    } else if (line.startsWith('/*', i)) {
-      inBlock = true;
-      i += 2;
-    } else if (line[i] === '"') {
-      const end = line.indexOf('"', i + 1);
-      const stop = end < 0 ? line.length : end + 1;
-      code += line.slice(i, stop);
-      i = stop;
-    } else {
-      code += line[i++];
-    }
-  }
-  return { code, inBlock };
 }
 
 const DIRECTIVE_RE = /^\s*#\s*(\w+)\s*(.*)$/;

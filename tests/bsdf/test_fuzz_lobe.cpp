@@ -1,7 +1,8 @@
 // Tests of the fuzz lobe (slang/lobes/openpbr_fuzz_lobe.h) and of its reference simulation and
 // LTC fit (host/tables/fuzz_fit.h). Include directory: the repository root. Optional
-// OPENPBR_GENERATED_DIR (a string literal, e.g. "/repo/slang/generated"): also checks that the
-// shipped .inc and .bin files hold the table compiled into this build.
+// OPENPBR_GENERATED_DIR and OPENPBR_TABLE_DIR (string literals, e.g. "/repo/slang/generated"
+// and "/repo/build/generated"): also checks that the tracked .inc and the .bin the build derives
+// from it hold the table compiled into this build.
 // Statistical tests use fixed seeds; the chi-square tests share a family-wise significance of
 // 0.01 (Sidak correction over the configurations).
 #include <gtest/gtest.h>
@@ -331,14 +332,14 @@ TEST(FuzzLobe, TableIsWellFormed)
     }
 }
 
-#ifdef OPENPBR_GENERATED_DIR
+#if defined(OPENPBR_GENERATED_DIR) && defined(OPENPBR_TABLE_DIR)
 TEST(FuzzFit, ShippedFilesMatchCompiledTable)
 {
     const std::vector<float> compiled(std::begin(openpbr::openpbr_fuzz_ltc_data), std::end(openpbr::openpbr_fuzz_ltc_data));
     const std::vector<float> from_inc =
         openpbr::host::read_fuzz_values_inc(std::string(OPENPBR_GENERATED_DIR) + "/openpbr_fuzz_ltc_values.inc");
     const std::vector<float> from_bin = openpbr::host::read_fuzz_binary(
-        std::string(OPENPBR_GENERATED_DIR) + "/openpbr_fuzz_ltc.bin", std::size_t(OPENPBR_FUZZ_LTC_TOTAL_COUNT));
+        std::string(OPENPBR_TABLE_DIR) + "/openpbr_fuzz_ltc.bin", std::size_t(OPENPBR_FUZZ_LTC_TOTAL_COUNT));
     EXPECT_EQ(from_inc, compiled);
     EXPECT_EQ(from_bin, compiled);
 }

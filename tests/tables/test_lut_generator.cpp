@@ -1,8 +1,8 @@
 // Tests for host/lut_generator: the shipped energy-compensation tables against a fresh
 // low-sample regeneration, physical bounds and closed-form limits, an independent quadrature of
 // the albedo integrals, determinism, half rounding and the file formats.
-// Needs OPENPBR_LUT_BIN_PATH and OPENPBR_LUT_INC_PATH (string literals: the shipped
-// slang/generated/openpbr_lut.bin and openpbr_lut_values.inc).
+// Needs OPENPBR_LUT_BIN_PATH and OPENPBR_LUT_INC_PATH (string literals: the openpbr_lut.bin the
+// build derives from the tracked slang/generated/openpbr_lut_values.inc, and that .inc).
 #include "host/tables/lut_generator.h"
 
 #include <glm/glm.hpp>  // first: the OpenPBR headers require it (interop/openpbr_interop_cpp.h)

@@ -1,0 +1,60 @@
+// `openpbr lutgen`: regenerates the energy-compensation tables (host/tables/lut_generator.h) into
+// openpbr_lut_values.inc, the tracked form; the build derives openpbr_lut.bin from it
+// (tools/table_inc_to_bin.py). Exit status 0, or 1 on errors.
+#include <iostream>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "host/cli/command.h"
+#include "host/tables/lut_generator.h"
+
+#ifndef OPENPBR_DEFAULT_GENERATED_DIR
+#define OPENPBR_DEFAULT_GENERATED_DIR "slang/generated"
+#endif
+
+namespace openpbr::host {
+
+namespace {
+
+struct LutgenSettings
+{
+    LutGeneratorOptions options;
+    std::string output_directory = OPENPBR_DEFAULT_GENERATED_DIR;
+};
+
+}  // namespace
+
+CLI::App* add_lutgen_subcommand(CLI::App& parent, const CommandContext&)
+{
+    auto settings = std::make_shared<LutgenSettings>();
+    CLI::App* command = parent.add_subcommand("lutgen", "generate the energy-compensation tables (Monte Carlo)");
+    LutGeneratorOptions& options = settings->options;
+    command->add_option("--size-2d", options.size_2d, "nodes per axis of the 2D table")->capture_default_str()
+        ->check(CLI::Range(2, 256));
+    command->add_option("--size-3d", options.size_3d, "nodes per axis of the 3D tables")->capture_default_str()
+        ->check(CLI::Range(2, 128));
+    command->add_option("--samples", options.samples, "Monte Carlo samples per table cell")->capture_default_str()
+        ->check(CLI::Range(1u, 1u << 30));
+    command->add_option("--bits", options.bits, "32 (float) or 16 (values rounded to half precision)")
+        ->capture_default_str()->check(CLI::IsMember({16, 32}));
+    command->add_option("--seed", options.seed, "0 = the shipped tables; others give independent replicas")
+        ->capture_default_str();
+    command->add_option("-o,--output-dir", settings->output_directory,
+                        "where openpbr_lut_values.inc goes (the build derives openpbr_lut.bin from it)")
+        ->capture_default_str();
+    command->add_flag("--progress", options.progress_always, "print progress even when stderr is not a terminal");
+    command->callback([settings]() {
+        run_command([&]() {
+            const std::vector<float> table = generate_lut(settings->options);
+            const std::string values_path = settings->output_directory + "/openpbr_lut_values.inc";
+            write_lut_values_inc(values_path, table, describe(settings->options));
+            std::cout << "wrote " << values_path << " (" << table.size() << " values, " << describe(settings->options)
+                      << ")\n";
+            return 0;
+        });
+    });
+    return command;
+}
+
+}  // namespace openpbr::host
