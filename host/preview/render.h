@@ -104,12 +104,13 @@ Material water_material(bool white);
 // of relative IOR 1/1.33 in water).
 Material air_material();
 
-// The nested-media scenes of the gallery: "Glass of water" (a glass shell of the bundled Glass
-// material, radius 1, around a water sphere of radius 0.9: the water/glass interface has
-// relative IOR 1.33/1.52 seen from the water) and "Air bubble in water" (a water sphere of
+// The nested-media scenes of the gallery, built from spheres (the renderer's only primitive):
+// "Glass of water" (a round bowl of the bundled Glass material, radius 1, filled with a water
+// sphere of radius 0.9, a wall 0.1 thick: the water/glass interface has relative IOR
+// 1.33/1.52 seen from the water) and "Air bubble in water" (a water sphere of
 // radius 1 with an air sphere of radius 0.45 off its middle). `glass` is the glass material
 // (the bundled one in the gallery). When `white` (for the furnace), every color of the glass
-// and the water is white and nothing absorbs.
+// and the water is white, nothing absorbs and the glass is not dispersive.
 std::vector<RenderCell> nested_media_cells(const Material& glass, bool white);
 
 // Whether a Vulkan device can be created; the reason in *reason when not.
