@@ -92,7 +92,8 @@ RenderCommand add_render_subcommand(CLI::App& app) {
     render->add_option("--backend", options.backend, "cpu or vulkan")->capture_default_str()
         ->check(CLI::IsMember({"cpu", "vulkan"}));
     render->add_option("--materials", options.material_files, "material files (default: the materials directory)");
-    render->add_flag("--gallery", options.gallery, "every bundled material (the default without --materials)");
+    render->add_flag("--gallery", options.gallery,
+                     "every bundled material, then the nested-media scenes (the default without --materials)");
     render->add_flag("--furnace", options.furnace,
                      "white furnace: white materials under a uniform white environment; checks 1 %");
     render->add_flag("--nested", options.nested,
@@ -138,12 +139,7 @@ int run_render_command(const RenderCommand& command, const std::string& material
             const std::vector<Material> loaded = load_materialx_file(file);
             materials.insert(materials.end(), loaded.begin(), loaded.end());
         }
-        std::vector<RenderCell> cells;
-        for (const Material& material : materials) {
-            RenderObject sphere;
-            sphere.material = material;
-            cells.push_back({material.name, {sphere}});
-        }
+        std::vector<RenderCell> cells = material_cells(materials);
         if (options.nested || whole_gallery) {
             const std::vector<RenderCell> nested =
                 nested_media_cells(load_materialx_file(materials_directory + "/open_pbr_glass.mtlx").front(), options.furnace);

@@ -446,8 +446,7 @@ RenderImage render_cells(const std::vector<RenderCell>& cells, const RenderSetti
     return backend == RenderBackend::cpu ? render_cpu(cells, settings) : render_vulkan(cells, settings);
 }
 
-RenderImage render_materials(const std::vector<Material>& materials, const RenderSettings& settings,
-                             RenderBackend backend) {
+std::vector<RenderCell> material_cells(const std::vector<Material>& materials) {
     std::vector<RenderCell> cells;
     cells.reserve(materials.size());
     for (const Material& material : materials) {
@@ -455,7 +454,12 @@ RenderImage render_materials(const std::vector<Material>& materials, const Rende
         sphere.material = material;
         cells.push_back({material.name, {sphere}});
     }
-    return render_cells(cells, settings, backend);
+    return cells;
+}
+
+RenderImage render_materials(const std::vector<Material>& materials, const RenderSettings& settings,
+                             RenderBackend backend) {
+    return render_cells(material_cells(materials), settings, backend);
 }
 
 Material water_material(bool white) {

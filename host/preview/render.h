@@ -91,7 +91,10 @@ constexpr int kRenderMaxObjects = 4;  // = OPENPBR_RENDER_MAX_OBJECTS (checked i
 // backend has no device (see vulkan_render_available) or a step fails.
 RenderImage render_cells(const std::vector<RenderCell>& cells, const RenderSettings& settings, RenderBackend backend);
 
-// Renders one unit sphere per material (a cell each, labelled with the material's name).
+// One cell per material: the unit sphere at the origin, labelled with the material's name.
+std::vector<RenderCell> material_cells(const std::vector<Material>& materials);
+
+// Renders material_cells(materials).
 RenderImage render_materials(const std::vector<Material>& materials, const RenderSettings& settings,
                              RenderBackend backend);
 
