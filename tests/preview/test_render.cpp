@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <ostream>
 #include <string>
 
 #include "host/scene/material_library.h"
@@ -154,6 +155,18 @@ RenderObject sphere_of(const Material& material, float radius, float x = 0.0f, f
     object.center[2] = z;
     return object;
 }
+
+}  // namespace
+
+namespace openpbr::host {
+// GoogleTest prints the parameter by this name in test listings (ctest shows it).
+void PrintTo(RenderBackend backend, std::ostream* stream)
+{
+    *stream << to_string(backend);
+}
+}  // namespace openpbr::host
+
+namespace {
 
 class NestedMedia : public ::testing::TestWithParam<RenderBackend>
 {
