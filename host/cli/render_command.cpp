@@ -24,6 +24,7 @@ struct RenderCommandOptions {
     std::vector<std::string> material_files;
     bool gallery = false;
     bool furnace = false;
+    bool nested = false;        // the nested-media scenes (glass of water, air bubble in water)
     int samples_per_pixel = 0;  // 0: 32 for the gallery, 64 for the furnace
     std::string size;           // "WxH"
     int cell_size = 0;          // 0: 128 (gallery) or 64 (furnace), or from --size
@@ -98,9 +99,13 @@ CLI::App* add_render_subcommand(CLI::App& parent, const CommandContext& context)
     render->add_option("--backend", options.backend, "cpu or vulkan")->capture_default_str()
         ->check(CLI::IsMember({"cpu", "vulkan"}));
     render->add_option("--materials", options.material_files, "material files (default: the materials directory)");
-    render->add_flag("--gallery", options.gallery, "every bundled material (the default without --materials)");
+    render->add_flag("--gallery", options.gallery,
+                     "every bundled material, then the nested-media scenes (the default without --materials)");
     render->add_flag("--furnace", options.furnace,
                      "white furnace: white materials under a uniform white environment; checks 1 %");
+    render->add_flag("--nested", options.nested,
+                     "only the nested-media scenes (glass of water, air bubble in water; the gallery ends with them); "
+                     "with --furnace their white versions");
     render->add_option("--spp", options.samples_per_pixel, "samples per pixel (default 32; furnace 64)")
         ->check(CLI::Range(1, 1 << 20));
     render->add_option("--size", options.size, "image size WxH; cells are the largest squares that fit");
@@ -131,15 +136,25 @@ CLI::App* add_render_subcommand(CLI::App& parent, const CommandContext& context)
 int run_render_command(const RenderCommandOptions& options, const std::string& materials_directory,
                        const std::string& kernel_directory) {
     try {
+        // One cell per material; the gallery ends with the nested-media scenes, made of the
+        // bundled Glass and the built-in water and air (host/preview/render.h).
         std::vector<Material> materials;
-        if (options.furnace) {
+        const bool whole_gallery = !options.furnace && !options.nested &&
+                                   (options.gallery || options.material_files.empty());
+        if (options.furnace && !options.nested) {
             materials = furnace_materials();
-        } else if (options.gallery || options.material_files.empty()) {
+        } else if (whole_gallery) {
             materials = load_material_directory(materials_directory);
         }
         for (const std::string& file : options.material_files) {
             const std::vector<Material> loaded = load_materialx_file(file);
             materials.insert(materials.end(), loaded.begin(), loaded.end());
+        }
+        std::vector<RenderCell> cells = material_cells(materials);
+        if (options.nested || whole_gallery) {
+            const std::vector<RenderCell> nested =
+                nested_media_cells(load_materialx_file(materials_directory + "/open_pbr_glass.mtlx").front(), options.furnace);
+            cells.insert(cells.end(), nested.begin(), nested.end());
         }
 
         RenderSettings settings;
@@ -147,7 +162,7 @@ int run_render_command(const RenderCommandOptions& options, const std::string& m
         settings.columns = options.columns;
         settings.samples_per_pixel = options.samples_per_pixel > 0 ? options.samples_per_pixel : (options.furnace ? 64 : 32);
         settings.cell_size = options.furnace ? 64 : 128;
-        if (!options.size.empty()) settings.cell_size = cell_from_size(options.size, materials.size(), options.columns);
+        if (!options.size.empty()) settings.cell_size = cell_from_size(options.size, cells.size(), options.columns);
         if (options.cell_size > 0) settings.cell_size = options.cell_size;
         settings.seed = options.seed;
         settings.max_depth = options.max_depth > 0 ? options.max_depth : (options.furnace ? 32 : 8);
@@ -158,6 +173,7 @@ int run_render_command(const RenderCommandOptions& options, const std::string& m
         const bool labels = !options.no_labels;
         nlohmann::json report;
         report["materials"] = materials.size();
+        report["cells"] = cells.size();
         int status = 0;
 
         auto furnace_check = [&](const RenderImage& image, const std::string& name) {
@@ -184,9 +200,9 @@ int run_render_command(const RenderCommandOptions& options, const std::string& m
             cpu_settings.progress_label = "cpu   ";
             RenderSettings vulkan_settings = settings;
             vulkan_settings.progress_label = "vulkan";
-            const RenderImage cpu = render_materials(materials, cpu_settings, RenderBackend::cpu);
+            const RenderImage cpu = render_cells(cells, cpu_settings, RenderBackend::cpu);
             print_render(cpu, RenderBackend::cpu);
-            const RenderImage vulkan = render_materials(materials, vulkan_settings, RenderBackend::vulkan);
+            const RenderImage vulkan = render_cells(cells, vulkan_settings, RenderBackend::vulkan);
             print_render(vulkan, RenderBackend::vulkan);
             const RenderComparison comparison = compare_renders(cpu, vulkan);
             const std::string stem = stem_of(output);
@@ -224,7 +240,7 @@ int run_render_command(const RenderCommandOptions& options, const std::string& m
         }
 
         const RenderBackend backend = options.backend == "vulkan" ? RenderBackend::vulkan : RenderBackend::cpu;
-        const RenderImage image = render_materials(materials, settings, backend);
+        const RenderImage image = render_cells(cells, settings, backend);
         print_render(image, backend);
         report["render"] = describe_render(image, backend);
         if (image.nonfinite_samples != 0) status = 1;

@@ -2,14 +2,37 @@
 // (render.slang) and the CPU renderer (host/preview/render.cpp) include this same text, so both run
 // identical code (one pixel sample per call of openpbr_render_sample).
 //
-// Scene (one per gallery cell, in the cell's own coordinates): a sphere of radius R centred at
-// the origin carrying the cell's material, a ground plane y = -R (a neutral OpenPBR material
-// with a checker on its base color), a gradient sky with a soft sun glow (or a uniform
-// environment), and one spherical area light. Everything is analytic (ray-sphere, ray-plane).
+// Scene (one per gallery cell, in the cell's own coordinates): up to OPENPBR_RENDER_MAX_OBJECTS
+// spheres, each with its own material (a plain gallery cell has one, of radius R centred at the
+// origin), a ground plane y = -R (a neutral OpenPBR material with a checker on its base color),
+// a gradient sky with a soft sun glow (or a uniform environment), and one spherical area light.
+// Everything is analytic (ray-sphere, ray-plane).
+//
+// Nested media (Schmidt and Budge 2002, "Simple nested dielectrics in ray traced images",
+// JGT 7(2)): every path carries the set of the cell's objects it is inside, one bit per object
+// (the medium stack, ordered by priority instead of by entry). An object's priority is its
+// index in the cell: later objects win where objects overlap, so a cell lists its objects from
+// the outside in (a glass shell, then the water in it). The medium the path travels in is the
+// entered object of highest priority, or the environment's (air, IOR 1) when the set is empty.
+// At a hit on object k's surface:
+//  - k's surface inside a medium of higher priority than k is not an interface (a false hit):
+//    the path goes straight on and only k's membership changes;
+//  - otherwise the surface is the interface between k's medium (IOR = k's specular_ior) and
+//    the medium outside k: the entered object of highest priority other than k. k's material
+//    is prepared with that medium's IOR as exterior_ior, so the BSDF sees the relative IOR of
+//    the two media (water in glass from either side: 1.33 / 1.52 = 0.875; a bubble in water:
+//    1 / 1.33), whichever side the path arrives from.
+// Transmission across a non-thin-walled object's surface adds it to the set (entering, below
+// its outward normal) or removes it (leaving); thin-walled objects never enter the set. Inside,
+// the path is in that object's homogeneous volume (transmission_color/depth, subsurface), the
+// one openpbr_prepare_volume gives, written by the host per object. The set holds one bit per
+// object, so it cannot overflow: its depth cap is the object count of a cell, which the host
+// checks (more objects are an error there). A path inside a medium that finds no surface ahead
+// (rounding at a grazing exit) ends without light.
 //
 // Integrator: unidirectional path tracing. Next-event estimation towards one emitter per
-// vertex, chosen uniformly among the area light and (from the ground) the cell's sphere when
-// its material emits, combined with BSDF sampling by multiple importance sampling (power
+// vertex, chosen uniformly among the area light and (from the ground) the cell's first object
+// when its material emits, combined with BSDF sampling by multiple importance sampling (power
 // heuristic, the emitter's pdf including its selection probability); BSDF sampling through
 // openpbr_sample; Russian roulette after RR_DEPTH events (survival max(throughput) capped at
 // 1); at most MAX_DEPTH surface events and MAX_VOLUME_EVENTS scattering events in a medium.
@@ -17,8 +40,10 @@
 // out: distances are sampled with openpbr_volume_sample_distance (spectral MIS over the
 // channels) and directions with the Henyey-Greenstein phase function; there is no next-event
 // estimation at medium scattering events (only at the interface, where a rough interface seen
-// from inside transmits the light in). Thin-walled spheres have no interior. Dispersive
-// materials (openpbr_needs_rgb_wavelengths) get one wavelength per RGB channel per path,
+// from inside transmits the light in; every object of the cell blocks shadow rays, so light
+// reaches an inner interface by BSDF sampling only). Thin-walled spheres have no interior.
+// Cells with a dispersive object (openpbr_needs_rgb_wavelengths) get one wavelength per RGB
+// channel per path,
 // uniform in the channel's box: B 400-500 nm, G 500-600 nm, R 600-700 nm (the pixel average
 // integrates each channel over its box); others use the library's default wavelengths.
 //
@@ -79,7 +104,24 @@
 #define OPENPBR_RENDER_SCENE_CHECKER_SIZE 37
 #define OPENPBR_RENDER_SCENE_CHECKER_DARK 38     // base_color factor of the dark squares
 #define OPENPBR_RENDER_SCENE_DEFAULT_WAVELENGTHS 39  // 3: OPENPBR_DEFAULT_RGB_WAVELENGTHS_NM
-#define OPENPBR_RENDER_SCENE_COUNT 44
+#define OPENPBR_RENDER_SCENE_COUNT 44  // the header; the object records follow it
+
+// ---- Object records (float), after the header: OPENPBR_RENDER_MAX_OBJECTS per cell ----
+// Record of object `slot` of cell `cell`: OPENPBR_RENDER_SCENE_COUNT + (cell *
+// OPENPBR_RENDER_MAX_OBJECTS + slot) * OPENPBR_RENDER_OBJECT_FLOATS. A cell's objects fill its
+// first slots; radius 0 marks the unused ones.
+#define OPENPBR_RENDER_MAX_OBJECTS 4u
+#define OPENPBR_RENDER_OBJECT_FLOATS 16u
+#define OPENPBR_RENDER_OBJECT_CENTER 0u       // 3
+#define OPENPBR_RENDER_OBJECT_RADIUS 3u       // > 0 for an object, 0 for an unused slot
+#define OPENPBR_RENDER_OBJECT_MATERIAL 4u     // index of its packed material (an integer)
+#define OPENPBR_RENDER_OBJECT_MEDIUM_IOR 5u   // IOR of its interior medium: its specular_ior
+#define OPENPBR_RENDER_OBJECT_ENCLOSES 6u     // 1: a path can be inside it (not thin-walled); 0
+#define OPENPBR_RENDER_OBJECT_DISPERSIVE 7u   // 1: openpbr_needs_rgb_wavelengths of its material
+#define OPENPBR_RENDER_OBJECT_EXTINCTION 8u   // 3: its volume (openpbr_prepare_volume)
+#define OPENPBR_RENDER_OBJECT_ALBEDO 11u      // 3
+#define OPENPBR_RENDER_OBJECT_ANISOTROPY 14u
+#define OPENPBR_RENDER_OBJECT_VOLUME_PRESENT 15u  // 1 or 0
 
 #define OPENPBR_RENDER_ACCUMULATION_FLOATS 8
 
@@ -91,7 +133,7 @@
 
 // Hit kinds.
 #define OPENPBR_RENDER_HIT_NONE 0u
-#define OPENPBR_RENDER_HIT_SPHERE 1u
+#define OPENPBR_RENDER_HIT_OBJECT 1u  // one of the cell's spheres
 #define OPENPBR_RENDER_HIT_GROUND 2u
 #define OPENPBR_RENDER_HIT_LIGHT 3u
 
@@ -302,18 +344,110 @@ OPENPBR_FUNC vec3 openpbr_render_environment(vec3 direction, uint flags)
                      pow(sun, OPENPBR_RENDER_SCENE(OPENPBR_RENDER_SCENE_SUN_EXPONENT));
 }
 
-// Whether anything (sphere of the cell, ground) blocks the segment from origin to distance.
-OPENPBR_FUNC bool openpbr_render_occluded(vec3 origin, vec3 direction, float distance_value, bool has_sphere,
-                                          float radius, uint flags)
+// ---- Objects of a cell ----
+
+struct OpenPBR_RenderObjectHit
+{
+    float t;    // distance along the ray, or -1
+    uint slot;  // the object hit, or OPENPBR_RENDER_MAX_OBJECTS
+};
+
+OPENPBR_FUNC uint openpbr_render_object_record(uint cell, uint slot)
+{
+    return uint(OPENPBR_RENDER_SCENE_COUNT) + (cell * OPENPBR_RENDER_MAX_OBJECTS + slot) * OPENPBR_RENDER_OBJECT_FLOATS;
+}
+
+OPENPBR_FUNC float openpbr_render_object_float(uint cell, uint slot, uint field)
+{
+    return OPENPBR_RENDER_SCENE(openpbr_render_object_record(cell, slot) + field);
+}
+
+OPENPBR_FUNC vec3 openpbr_render_object_center(uint cell, uint slot)
+{
+    return openpbr_render_scene_vec3(openpbr_render_object_record(cell, slot) + OPENPBR_RENDER_OBJECT_CENTER);
+}
+
+// The cell's objects fill its first slots; an unused slot has radius 0.
+OPENPBR_FUNC uint openpbr_render_object_count(uint cell)
+{
+    uint count = 0u;
+    for (uint slot = 0u; slot < OPENPBR_RENDER_MAX_OBJECTS; ++slot)
+    {
+        if (count == slot && openpbr_render_object_float(cell, slot, OPENPBR_RENDER_OBJECT_RADIUS) > 0.0f)
+        {
+            count = slot + 1u;
+        }
+    }
+    return count;
+}
+
+// Nearest hit beyond 0 among the cell's first `count` objects (ties: the earlier object).
+OPENPBR_FUNC OpenPBR_RenderObjectHit openpbr_render_intersect_objects(vec3 origin, vec3 direction, uint cell, uint count)
+{
+    OpenPBR_RenderObjectHit hit;
+    hit.t = -1.0f;
+    hit.slot = OPENPBR_RENDER_MAX_OBJECTS;
+    for (uint slot = 0u; slot < count; ++slot)
+    {
+        const float t = openpbr_render_intersect_sphere(origin, direction, openpbr_render_object_center(cell, slot),
+                                                        openpbr_render_object_float(cell, slot, OPENPBR_RENDER_OBJECT_RADIUS),
+                                                        0.0f);
+        if (t > 0.0f && (hit.slot == OPENPBR_RENDER_MAX_OBJECTS || t < hit.t))
+        {
+            hit.t = t;
+            hit.slot = slot;
+        }
+    }
+    return hit;
+}
+
+// The medium of a set of entered objects: the one of highest priority (the highest set bit),
+// or OPENPBR_RENDER_MAX_OBJECTS for the empty set (the environment).
+OPENPBR_FUNC uint openpbr_render_top_object(uint inside_set)
+{
+    uint top = OPENPBR_RENDER_MAX_OBJECTS;
+    for (uint slot = 0u; slot < OPENPBR_RENDER_MAX_OBJECTS; ++slot)
+    {
+        if (((inside_set >> slot) & 1u) != 0u)
+        {
+            top = slot;
+        }
+    }
+    return top;
+}
+
+// IOR of the medium inside `slot`; the environment (no object) is air, IOR 1.
+OPENPBR_FUNC float openpbr_render_medium_ior(uint cell, uint slot)
+{
+    return slot < OPENPBR_RENDER_MAX_OBJECTS ? openpbr_render_object_float(cell, slot, OPENPBR_RENDER_OBJECT_MEDIUM_IOR)
+                                             : 1.0f;
+}
+
+// The homogeneous volume inside `slot` (empty for the environment).
+OPENPBR_FUNC OpenPBR_HomogeneousVolume openpbr_render_medium_volume(uint cell, uint slot)
+{
+    OpenPBR_HomogeneousVolume volume = openpbr_make_empty_volume();
+    if (slot < OPENPBR_RENDER_MAX_OBJECTS)
+    {
+        const uint record = openpbr_render_object_record(cell, slot);
+        volume.extinction = openpbr_render_scene_vec3(record + OPENPBR_RENDER_OBJECT_EXTINCTION);
+        volume.albedo = openpbr_render_scene_vec3(record + OPENPBR_RENDER_OBJECT_ALBEDO);
+        volume.anisotropy = OPENPBR_RENDER_SCENE(record + OPENPBR_RENDER_OBJECT_ANISOTROPY);
+        volume.is_present = OPENPBR_RENDER_SCENE(record + OPENPBR_RENDER_OBJECT_VOLUME_PRESENT) != 0.0f;
+    }
+    return volume;
+}
+
+// Whether anything (the cell's first `object_count` objects, the ground) blocks the segment
+// from origin to distance.
+OPENPBR_FUNC bool openpbr_render_occluded(vec3 origin, vec3 direction, float distance_value, uint cell,
+                                          uint object_count, float radius, uint flags)
 {
     const float limit = distance_value * 0.9999f;
-    if (has_sphere)
+    const OpenPBR_RenderObjectHit hit = openpbr_render_intersect_objects(origin, direction, cell, object_count);
+    if (hit.t > 0.0f && hit.t < limit)
     {
-        const float t = openpbr_render_intersect_sphere(origin, direction, vec3(0.0f), radius, 0.0f);
-        if (t > 0.0f && t < limit)
-        {
-            return true;
-        }
+        return true;
     }
     if ((flags & OPENPBR_RENDER_FLAG_GROUND) != 0u)
     {
@@ -329,7 +463,8 @@ OPENPBR_FUNC bool openpbr_render_occluded(vec3 origin, vec3 direction, float dis
 // ---- One path ----
 
 // Emitters for next-event estimation: the area light and, seen from the ground, the cell's
-// sphere when its material emits. One is chosen uniformly per vertex (one call site of eval
+// first object when its material emits (an emitting object inside another is reached by BSDF
+// sampling only). One is chosen uniformly per vertex (one call site of eval
 // and pdf keeps the kernel small: lavapipe's pipeline creation time grows with it).
 #define OPENPBR_RENDER_EMITTER_LIGHT 1u
 #define OPENPBR_RENDER_EMITTER_SPHERE 2u
@@ -384,17 +519,28 @@ OPENPBR_FUNC OpenPBR_RenderSample openpbr_render_sample(uint pixel_x, uint pixel
                                openpbr_render_scene_vec3(OPENPBR_RENDER_SCENE_CAMERA_RIGHT) * ndc_x +
                                openpbr_render_scene_vec3(OPENPBR_RENDER_SCENE_CAMERA_UP) * ndc_y);
 
+    // The cell's first object is the emitter next-event estimation can aim at.
+    const uint object_count = has_sphere ? openpbr_render_object_count(cell_index) : 0u;
     OpenPBR_ResolvedInputs sphere_inputs = openpbr_make_default_resolved_inputs();
-    if (has_sphere)
+    vec3 sphere_center = vec3(0.0f);
+    float sphere_radius = radius;
+    bool dispersive = false;
+    if (object_count > 0u)
     {
-        sphere_inputs = openpbr_render_unpack_material(cell_index);
+        sphere_inputs = openpbr_render_unpack_material(
+            uint(openpbr_render_object_float(cell_index, 0u, OPENPBR_RENDER_OBJECT_MATERIAL)));
+        sphere_center = openpbr_render_object_center(cell_index, 0u);
+        sphere_radius = openpbr_render_object_float(cell_index, 0u, OPENPBR_RENDER_OBJECT_RADIUS);
+        for (uint slot = 0u; slot < object_count; ++slot)
+        {
+            dispersive = dispersive || openpbr_render_object_float(cell_index, slot, OPENPBR_RENDER_OBJECT_DISPERSIVE) != 0.0f;
+        }
     }
-    const bool sphere_emissive = has_sphere && sphere_inputs.emission_luminance > 0.0f &&
+    const bool sphere_emissive = object_count > 0u && sphere_inputs.emission_luminance > 0.0f &&
                                  openpbr_max3(sphere_inputs.emission_color) > 0.0f;
 
-    // Wavelengths: one per channel, uniform in the channel's box, for dispersive materials;
-    // otherwise the library's default (the host writes OPENPBR_DEFAULT_RGB_WAVELENGTHS_NM).
-    const bool dispersive = has_sphere && openpbr_needs_rgb_wavelengths(sphere_inputs);
+    // Wavelengths: one per channel, uniform in the channel's box, when an object of the cell is
+    // dispersive; otherwise the library's default (the host writes OPENPBR_DEFAULT_RGB_WAVELENGTHS_NM).
     vec3 wavelengths = openpbr_render_scene_vec3(OPENPBR_RENDER_SCENE_DEFAULT_WAVELENGTHS);
     if (dispersive)
     {
@@ -407,7 +553,9 @@ OPENPBR_FUNC OpenPBR_RenderSample openpbr_render_sample(uint pixel_x, uint pixel
     vec3 throughput = vec3(1.0f);
     vec3 radiance = vec3(0.0f);
     bool nonfinite = false;
-    bool in_medium = false;  // inside the sphere's interior (entered by transmission)
+    // The medium stack: one bit per object of the cell the path is inside (see the top of this
+    // file); the medium the path is in is the highest set bit's.
+    uint inside_set = 0u;
     OpenPBR_HomogeneousVolume medium = openpbr_make_empty_volume();
     // MIS state of the previous vertex: the emitters its next-event estimation could choose
     // (0 after a delta lobe or a medium event), its BSDF pdf for the sampled direction, its
@@ -421,17 +569,16 @@ OPENPBR_FUNC OpenPBR_RenderSample openpbr_render_sample(uint pixel_x, uint pixel
 
     for (uint step = 0u; step < step_limit; ++step)
     {
-        // Closest hit among the sphere, the ground and the light.
+        // Closest hit among the objects, the ground and the light (the last two only from outside
+        // every object).
+        const bool in_medium = inside_set != 0u;
+        const OpenPBR_RenderObjectHit object_hit = openpbr_render_intersect_objects(origin, direction, cell_index, object_count);
         uint hit = OPENPBR_RENDER_HIT_NONE;
         float t_hit = OPENPBR_RENDER_FLOAT_MAX;
-        if (has_sphere)
+        if (object_hit.slot < OPENPBR_RENDER_MAX_OBJECTS)
         {
-            const float t = openpbr_render_intersect_sphere(origin, direction, vec3(0.0f), radius, 0.0f);
-            if (t > 0.0f)
-            {
-                hit = OPENPBR_RENDER_HIT_SPHERE;
-                t_hit = t;
-            }
+            hit = OPENPBR_RENDER_HIT_OBJECT;
+            t_hit = object_hit.t;
         }
         if (has_ground && !in_medium)
         {
@@ -453,9 +600,9 @@ OPENPBR_FUNC OpenPBR_RenderSample openpbr_render_sample(uint pixel_x, uint pixel
         }
         if (step == 0u)
         {
-            result.hit_object = hit == OPENPBR_RENDER_HIT_SPHERE;
+            result.hit_object = hit == OPENPBR_RENDER_HIT_OBJECT;
         }
-        if (in_medium && hit != OPENPBR_RENDER_HIT_SPHERE)
+        if (in_medium && hit != OPENPBR_RENDER_HIT_OBJECT)
         {
             break;  // lost the interior to rounding: end the path (no light gained)
         }
@@ -520,28 +667,61 @@ OPENPBR_FUNC OpenPBR_RenderSample openpbr_render_sample(uint pixel_x, uint pixel
 
         // Surface interaction: geometric normal = shading normal.
         const vec3 position = origin + direction * t_hit;
-        const bool on_sphere = hit == OPENPBR_RENDER_HIT_SPHERE;
-        const vec3 normal = on_sphere ? normalize(position) : vec3(0.0f, 1.0f, 0.0f);
+        const bool on_object = hit == OPENPBR_RENDER_HIT_OBJECT;
+        const uint slot = object_hit.slot;
+        const vec3 normal = on_object ? normalize(position - openpbr_render_object_center(cell_index, slot))
+                                      : vec3(0.0f, 1.0f, 0.0f);
+        const bool encloses =
+            on_object && openpbr_render_object_float(cell_index, slot, OPENPBR_RENDER_OBJECT_ENCLOSES) != 0.0f;
+        const uint slot_bit = on_object ? (1u << slot) : 0u;
+        // The medium outside this surface: the entered object of highest priority other than
+        // the one hit (the environment when there is none).
+        const uint outside_object = openpbr_render_top_object(inside_set & ~slot_bit);
+        if (on_object && outside_object < OPENPBR_RENDER_MAX_OBJECTS && outside_object > slot)
+        {
+            // A false hit: the surface lies inside a medium of higher priority, which continues
+            // on both sides. Straight on; only the membership of the object hit changes.
+            const float crossing = dot(direction, normal);
+            if (encloses)
+            {
+                inside_set = crossing < 0.0f ? (inside_set | slot_bit) : (inside_set & ~slot_bit);
+            }
+            origin = position + normal * (crossing >= 0.0f ? epsilon : -epsilon);
+            continue;
+        }
+        const float exterior_ior = on_object ? openpbr_render_medium_ior(cell_index, outside_object) : 1.0f;
         OpenPBR_ResolvedInputs inputs = sphere_inputs;
-        if (!on_sphere)
+        if (!on_object)
         {
             inputs = openpbr_render_unpack_material(ground_material);
             const float parity = fract(0.5f * (floor(position.x / checker_size) + floor(position.z / checker_size)));
             inputs.base_color = inputs.base_color * (parity < 0.25f ? 1.0f : checker_dark);
         }
+        else if (slot != 0u)
+        {
+            inputs = openpbr_render_unpack_material(
+                uint(openpbr_render_object_float(cell_index, slot, OPENPBR_RENDER_OBJECT_MATERIAL)));
+        }
         inputs.geometry_basis = openpbr_make_basis(normal);
         inputs.geometry_coat_basis = inputs.geometry_basis;
         const vec3 view = -direction;
-        const OpenPBR_PreparedBsdf bsdf = openpbr_prepare(inputs, view, on_sphere ? wavelengths : ground_wavelengths);
+        const OpenPBR_PreparedBsdf bsdf =
+            openpbr_prepare(inputs, view, on_object ? wavelengths : ground_wavelengths, exterior_ior);
 
-        if (on_sphere && sphere_emissive)
+        if (on_object && slot == 0u && sphere_emissive)
         {
             const float weight =
                 (previous_candidates & OPENPBR_RENDER_EMITTER_SPHERE) != 0u
                     ? openpbr_render_power_heuristic(
-                          previous_pdf, previous_selection * openpbr_render_cone_pdf(previous_position, vec3(0.0f), radius))
+                          previous_pdf,
+                          previous_selection * openpbr_render_cone_pdf(previous_position, sphere_center, sphere_radius))
                     : 1.0f;
             radiance = radiance + throughput * bsdf.emission * (nits_to_units * weight);
+        }
+        else if (on_object && slot != 0u)
+        {
+            // Inner objects are not next-event targets: their emission counts in full.
+            radiance = radiance + throughput * bsdf.emission * nits_to_units;
         }
 
         surface_events += 1u;
@@ -551,9 +731,10 @@ OPENPBR_FUNC OpenPBR_RenderSample openpbr_render_sample(uint pixel_x, uint pixel
         }
 
         // Next-event estimation towards one emitter (also from the interface seen from inside:
-        // rough interfaces then transmit the light in; delta lobes give eval = 0).
+        // rough interfaces then transmit the light in; delta lobes give eval = 0). Every object
+        // of the cell occludes, except the emitting object when it is the target.
         const uint candidates = (has_light ? OPENPBR_RENDER_EMITTER_LIGHT : 0u) |
-                                (!on_sphere && sphere_emissive ? OPENPBR_RENDER_EMITTER_SPHERE : 0u);
+                                (!on_object && sphere_emissive ? OPENPBR_RENDER_EMITTER_SPHERE : 0u);
         if (candidates != 0u)
         {
             const float selection = openpbr_render_emitter_selection(candidates);
@@ -561,8 +742,8 @@ OPENPBR_FUNC OpenPBR_RenderSample openpbr_render_sample(uint pixel_x, uint pixel
             const bool pick_sphere = candidates == OPENPBR_RENDER_EMITTER_SPHERE ||
                                      (candidates == (OPENPBR_RENDER_EMITTER_LIGHT | OPENPBR_RENDER_EMITTER_SPHERE) &&
                                       u_emitter < 0.5f);
-            const vec3 emitter_center = pick_sphere ? vec3(0.0f) : light_center;
-            const float emitter_radius = pick_sphere ? radius : light_radius;
+            const vec3 emitter_center = pick_sphere ? sphere_center : light_center;
+            const float emitter_radius = pick_sphere ? sphere_radius : light_radius;
             const OpenPBR_RenderCone cone = openpbr_render_sample_cone(
                 position, emitter_center, emitter_radius,
                 vec2(openpbr_render_random(key, step, OPENPBR_RENDER_DIMENSION_LIGHT_U),
@@ -577,15 +758,15 @@ OPENPBR_FUNC OpenPBR_RenderSample openpbr_render_sample(uint pixel_x, uint pixel
                     if (pick_sphere)
                     {
                         OpenPBR_ResolvedInputs emitter_inputs = sphere_inputs;
-                        emitter_inputs.geometry_basis = openpbr_make_basis(normalize(position + cone.direction * cone.distance));
+                        emitter_inputs.geometry_basis =
+                            openpbr_make_basis(normalize(position + cone.direction * cone.distance - sphere_center));
                         emitter_inputs.geometry_coat_basis = emitter_inputs.geometry_basis;
                         emitted = openpbr_prepare_emission(emitter_inputs, -cone.direction) * nits_to_units;
                     }
                     const float facing = dot(cone.direction, normal) >= 0.0f ? 1.0f : -1.0f;
                     const vec3 shadow_origin = position + normal * (facing * epsilon);
-                    // The emitting sphere is the target, not an occluder.
-                    if (!openpbr_render_occluded(shadow_origin, cone.direction, cone.distance, has_sphere && !pick_sphere,
-                                                 radius, flags))
+                    if (!openpbr_render_occluded(shadow_origin, cone.direction, cone.distance, cell_index,
+                                                 pick_sphere ? 0u : object_count, radius, flags))
                     {
                         const float light_pdf = selection * cone.pdf;
                         const float weight = openpbr_render_power_heuristic(light_pdf, openpbr_pdf(bsdf, cone.direction));
@@ -615,12 +796,12 @@ OPENPBR_FUNC OpenPBR_RenderSample openpbr_render_sample(uint pixel_x, uint pixel
         previous_pdf = bsdf_sample.pdf;
         previous_position = position;
         const float going = dot(bsdf_sample.direction, normal);
-        if (on_sphere && !inputs.geometry_thin_walled)
+        if (encloses)
         {
-            // Below the outward normal of a convex sphere is its interior, whichever lobe took
-            // the path there (refraction, or the opacity pass-through of a cut-out surface).
-            in_medium = going < 0.0f;
-            medium = bsdf.volume;
+            // Below the outward normal of a sphere is its interior, whichever lobe took the
+            // path there (refraction, or the opacity pass-through of a cut-out surface).
+            inside_set = going < 0.0f ? (inside_set | slot_bit) : (inside_set & ~slot_bit);
+            medium = openpbr_render_medium_volume(cell_index, openpbr_render_top_object(inside_set));
         }
         origin = position + normal * (going >= 0.0f ? epsilon : -epsilon);
         direction = bsdf_sample.direction;
