@@ -41,7 +41,7 @@
 //    and the angle, not on the base or the polarization, so one set of film harmonics serves
 //    both polarizations, the three channels of a conductor, and the dielectric and metal bases
 //    evaluated at the same microfacet angle (openpbr_thin_film_harmonics). The series keeps
-//    M = 3 harmonics explicitly and sums the rest in closed form as a geometric series: for
+//    M = 4 harmonics explicitly and sums the rest in closed form as a geometric series: for
 //    m > M, g^(m^2) becomes g^((M+1)^2 + 3 (M+1)(m - M - 1)), the chord of the exponent between
 //    m = M+1 and m = 2(M+1). The tail is exact for g = 1, so a zero-thickness film reproduces
 //    the base Fresnel exactly and near grazing angles, where |z| -> 1 and the Airy peaks become
@@ -74,8 +74,8 @@
 #include "openpbr_math.h"
 
 // Largest reflectance the closed-form tail may drop, e.g. 1e-5. Harmonic m is at most
-// 2 |A| g^(m^2) |rho|^m in size, so the harmonics after the third sum to at most
-// 2 |A| g^16 |rho|^4 / (1 - |rho|); the tail (a complex division per lobe and polarization) is
+// 2 |A| g^(m^2) |rho|^m in size, so the harmonics after the fourth sum to at most
+// 2 |A| g^25 |rho|^5 / (1 - |rho|); the tail (a complex division per lobe and polarization) is
 // evaluated only where that bound, with the largest lobe damping g, is above this value.
 // |rho| = |r21 r23| is small away from grazing incidence (0.006 for a 1.4 film on 1.5 glass,
 // about 0.15 on a metal), so most evaluations skip it. 1e-5 is a thirtieth of the smallest
@@ -172,7 +172,7 @@ struct OpenPBR_ThinFilmPolarization
     float amplitude;     // A = -T12 T23 / (T12 + R12 T23)
     vec2 rho;            // r21 r23: one internal round trip without the propagation phase
     vec2 one_minus_rho;  // 1 - rho, from a form without cancellation (it vanishes near grazing)
-    float tail_bound;    // 2 |A| |rho|^4 / (1 - |rho|): bounds the harmonics m >= 4 (before damping)
+    float tail_bound;    // 2 |A| |rho|^5 / (1 - |rho|): bounds the harmonics m >= 5 (before damping)
 };
 
 // Everything about the film and base that does not depend on wavelength, for one channel.
@@ -219,8 +219,9 @@ OPENPBR_FUNC OpenPBR_ThinFilmPolarization openpbr_thin_film_polarization(float a
                                  (inverse_sum_2_norm * inverse_sum_1);
     // |rho|^2 = R12 R23 and 1 - |rho| = (1 - R12 R23) / (1 + |rho|), without cancellation.
     const float rho_squared = reflectance_12 * reflectance_23;
-    polarization.tail_bound = 2.0f * abs(polarization.amplitude) * rho_squared * rho_squared *
-                              (1.0f + sqrt(rho_squared)) * inverse_denominator;
+    const float rho_magnitude = sqrt(rho_squared);
+    polarization.tail_bound = 2.0f * abs(polarization.amplitude) * rho_squared * rho_squared * rho_magnitude *
+                              (1.0f + rho_magnitude) * inverse_denominator;
     return polarization;
 }
 
@@ -330,8 +331,8 @@ OPENPBR_FUNC OpenPBR_ThinFilmLobePhase openpbr_thin_film_lobe_phase(float optica
     return phase;
 }
 
-// The closed-form tail m >= 4 of one polarization's series averaged over one spectral lobe:
-// g^16 z^4 / (1 - g^12 z), z = rho e^{i delta_j} (the chord of the exponent, see the top).
+// The closed-form tail m >= 5 of one polarization's series averaged over one spectral lobe:
+// g^25 z^5 / (1 - g^15 z), z = rho e^{i delta_j} (the chord of the exponent, see the top).
 OPENPBR_FUNC float openpbr_thin_film_lobe_tail(OPENPBR_IN(OpenPBR_ThinFilmPolarization) polarization,
                                                OPENPBR_IN(OpenPBR_ThinFilmLobePhase) phase)
 {
@@ -340,14 +341,14 @@ OPENPBR_FUNC float openpbr_thin_film_lobe_tail(OPENPBR_IN(OpenPBR_ThinFilmPolari
     const float damping_squared = phase.damping * phase.damping;
     const float damping_4 = damping_squared * damping_squared;
     const float damping_8 = damping_4 * damping_4;
+    const float damping_16 = damping_8 * damping_8;
     // 1 - w z = (1 - rho) + rho (1 - phasor) + (1 - w) z, each part without cancellation.
-    const vec2 one_minus_tail_ratio_z = polarization.one_minus_rho +
-                                        openpbr_complex_multiply(polarization.rho, phase.one_minus_phasor) +
-                                        (1.0f - damping_8 * damping_4) * round_trip;
-    return damping_8 * damping_8 *
-           openpbr_complex_divide(openpbr_complex_multiply(round_trip_squared, round_trip_squared),
-                                  one_minus_tail_ratio_z)
-               .x;
+    const vec2 one_minus_tail_ratio_z =
+        polarization.one_minus_rho + openpbr_complex_multiply(polarization.rho, phase.one_minus_phasor) +
+        (1.0f - damping_8 * damping_4 * damping_squared * phase.damping) * round_trip;
+    const vec2 round_trip_4 = openpbr_complex_multiply(round_trip_squared, round_trip_squared);
+    return damping_16 * damping_8 * phase.damping *
+           openpbr_complex_divide(openpbr_complex_multiply(round_trip_4, round_trip), one_minus_tail_ratio_z).x;
 }
 
 // ---- Input handling shared by the public functions ----------------------------------------
@@ -474,7 +475,7 @@ OPENPBR_FUNC float openpbr_thin_film_channel_of(vec3 v, int channel)
     return channel == 0 ? v.x : (channel == 1 ? v.y : v.z);
 }
 
-// The film's spectral harmonics at one angle (see the top): H_c(m) for m = 1, 2, 3 per RGB
+// The film's spectral harmonics at one angle (see the top): H_c(m) for m = 1 .. 4 per RGB
 // channel, real and imaginary parts. They depend on the film and the angle only.
 struct OpenPBR_ThinFilmHarmonics
 {
@@ -484,7 +485,9 @@ struct OpenPBR_ThinFilmHarmonics
     vec3 imaginary_2;
     vec3 real_3;
     vec3 imaginary_3;
-    float largest_tail_damping;  // max_j g_j^16, the damping of the first tail harmonic
+    vec3 real_4;
+    vec3 imaginary_4;
+    float largest_tail_damping;  // max_j g_j^25, the damping of the first tail harmonic
 };
 
 // Harmonics for a film of optical path difference 2 n_f d cos_f (micrometres): one loop over
@@ -498,6 +501,8 @@ OPENPBR_FUNC OpenPBR_ThinFilmHarmonics openpbr_thin_film_harmonics(float optical
     harmonics.imaginary_2 = vec3(0.0f);
     harmonics.real_3 = vec3(0.0f);
     harmonics.imaginary_3 = vec3(0.0f);
+    harmonics.real_4 = vec3(0.0f);
+    harmonics.imaginary_4 = vec3(0.0f);
     harmonics.largest_tail_damping = 0.0f;
     for (int lobe_index = 0; lobe_index < 6; ++lobe_index)
     {
@@ -508,29 +513,35 @@ OPENPBR_FUNC OpenPBR_ThinFilmHarmonics openpbr_thin_film_harmonics(float optical
         const float damping_4 = openpbr_square(damping * damping);
         const vec2 phasor_2 = openpbr_complex_multiply(phase.phasor, phase.phasor);
         const vec2 phasor_3 = openpbr_complex_multiply(phasor_2, phase.phasor);
+        const vec2 phasor_4 = openpbr_complex_multiply(phasor_2, phasor_2);
+        const float damping_16 = openpbr_square(damping_4 * damping_4);
         const vec3 weight_1 = lobe.weight * damping;                          // W g
         const vec3 weight_2 = lobe.weight * damping_4;                        // W g^4
         const vec3 weight_3 = lobe.weight * (damping_4 * damping_4 * damping);  // W g^9
+        const vec3 weight_4 = lobe.weight * damping_16;                       // W g^16
         harmonics.real_1 += weight_1 * phase.phasor.x;
         harmonics.imaginary_1 += weight_1 * phase.phasor.y;
         harmonics.real_2 += weight_2 * phasor_2.x;
         harmonics.imaginary_2 += weight_2 * phasor_2.y;
         harmonics.real_3 += weight_3 * phasor_3.x;
         harmonics.imaginary_3 += weight_3 * phasor_3.y;
-        harmonics.largest_tail_damping = max(harmonics.largest_tail_damping, openpbr_square(damping_4 * damping_4));
+        harmonics.real_4 += weight_4 * phasor_4.x;
+        harmonics.imaginary_4 += weight_4 * phasor_4.y;
+        harmonics.largest_tail_damping = max(harmonics.largest_tail_damping, damping_16 * damping_4 * damping_4 * damping);
     }
     return harmonics;
 }
 
-// mean + 2 A sum_{m=1..3} Re(rho^m H_c(m)) for the three channels.
+// mean + 2 A sum_{m=1..4} Re(rho^m H_c(m)) for the three channels.
 OPENPBR_FUNC vec3 openpbr_thin_film_harmonic_sum(OPENPBR_IN(OpenPBR_ThinFilmPolarization) polarization,
                                                  OPENPBR_IN(OpenPBR_ThinFilmHarmonics) harmonics)
 {
     const vec2 rho_2 = openpbr_complex_multiply(polarization.rho, polarization.rho);
     const vec2 rho_3 = openpbr_complex_multiply(rho_2, polarization.rho);
+    const vec2 rho_4 = openpbr_complex_multiply(rho_2, rho_2);
     const vec3 sum = polarization.rho.x * harmonics.real_1 - polarization.rho.y * harmonics.imaginary_1 +
                      rho_2.x * harmonics.real_2 - rho_2.y * harmonics.imaginary_2 + rho_3.x * harmonics.real_3 -
-                     rho_3.y * harmonics.imaginary_3;
+                     rho_3.y * harmonics.imaginary_3 + rho_4.x * harmonics.real_4 - rho_4.y * harmonics.imaginary_4;
     return vec3(polarization.mean) + (2.0f * polarization.amplitude) * sum;
 }
 
