@@ -588,7 +588,7 @@ OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare_lobes_of(OPENPBR_IN(OpenPBR_Re
         // the step at the critical angle when eta < 1 and gained up to 115 % there).
         const float transmission_compensation =
             openpbr_ggx_is_delta(alpha) ? 1.0f
-                                        : 1.0f / max(openpbr_dielectric_transmission_albedo(mu, table_alpha, eta_channels.y), 0.05f);
+                                        : 1.0f / max(openpbr_dielectric_transmission_albedo(mu, table_alpha, eta_channels.y), OPENPBR_MIN_TRANSMISSION_ALBEDO);
         bsdf.transmission = openpbr_dielectric_lobe_init(zero, transmission_weight * transmission_compensation, alpha,
                                                          eta_channels, false, OPENPBR_LOBE_ID_SPECULAR_TRANSMISSION, view);
     }

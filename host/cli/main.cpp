@@ -79,8 +79,10 @@ int main(int argc, char** argv)
     std::string lut_output_directory = OPENPBR_DEFAULT_GENERATED_DIR;
     lutgen->add_option("--size-2d", lut_options.size_2d, "nodes per axis of the 2D table")->capture_default_str()
         ->check(CLI::Range(2, 256));
-    lutgen->add_option("--size-3d", lut_options.size_3d, "nodes per axis of the 3D tables")->capture_default_str()
-        ->check(CLI::Range(2, 128));
+    lutgen->add_option("--size-3d", lut_options.size_3d, "nodes on the view and roughness axes of the 3D tables")
+        ->capture_default_str()->check(CLI::Range(2, 128));
+    lutgen->add_option("--size-3d-eta", lut_options.size_3d_eta, "nodes on the eta axis of the 3D tables (even)")
+        ->capture_default_str()->check(CLI::Range(6, 128));
     lutgen->add_option("--samples", lut_options.samples, "Monte Carlo samples per table cell")->capture_default_str()
         ->check(CLI::Range(1u, 1u << 30));
     lutgen->add_option("--bits", lut_options.bits, "32 (float) or 16 (values rounded to half precision)")
