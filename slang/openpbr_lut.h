@@ -455,7 +455,8 @@ OPENPBR_FUNC float openpbr_lut_3d_along_eta(int offset, int x0, int y0, float tx
 OPENPBR_FUNC float openpbr_lut_3d(int offset, float mu, float alpha, float eta)
 {
     const float scale = float(OPENPBR_LUT_3D_SIZE - 1);
-    const float view = openpbr_lut_view_coordinate(mu, openpbr_lut_critical_cosine(eta));
+    const float critical_cosine = openpbr_lut_critical_cosine(eta);
+    const float view = openpbr_lut_view_coordinate(mu, critical_cosine);
     // NaN-safe clamps: a NaN coordinate (e.g. from a NaN wavelength) would make int() undefined.
     const float fx = openpbr_clamp_finite(view, 0.0f, 1.0f) * scale;
     const float fy = openpbr_clamp_finite(openpbr_lut_roughness_coordinate(alpha), 0.0f, 1.0f) * scale;
@@ -469,11 +470,15 @@ OPENPBR_FUNC float openpbr_lut_3d(int offset, float mu, float alpha, float eta)
     const int y0 = min(int(fy), OPENPBR_LUT_3D_SIZE - 2);
     const float tx = fx - float(x0);
     const float ty = fy - float(y0);
-    if (x0 > 0 || tx == 0.0f)
+    // Nodes below the view coordinate of the generator's floor mu = 1e-4 hold the floor's values
+    // (near eta = 1 the warped axis puts the first nodes there), so a cell starting at one is a
+    // first cell too (IOR 1.0001, roughness 0.3, cos 1e-4: E_T0 interpolated 0.825, true 0.850).
+    const bool first_cell = float(x0) < scale * openpbr_lut_view_coordinate(OPENPBR_LUT_MIN_VIEW_COSINE, critical_cosine);
+    if (!first_cell || tx == 0.0f)
     {
         return openpbr_lut_3d_along_eta(offset, x0, y0, tx, ty, fz);
     }
-    return max(openpbr_lut_3d_along_eta(offset, 0, y0, 0.0f, ty, fz), openpbr_lut_3d_along_eta(offset, 0, y0, 1.0f, ty, fz));
+    return max(openpbr_lut_3d_along_eta(offset, x0, y0, 0.0f, ty, fz), openpbr_lut_3d_along_eta(offset, x0, y0, 1.0f, ty, fz));
 }
 
 
