@@ -19,10 +19,32 @@
 //   c_mu  = sqrt(mu), mu = cos(theta) of the view: nodes crowd towards grazing, where
 //           Fresnel and shadowing change fastest;
 //   c_r   = r = sqrt(alpha) (perceptually even roughness steps);
-//   c_eta = 0.5 + sgn(y) sqrt(|y| / 2), y = (eta - 1) / (eta + 1): maps eta in [1/3, 3]
-//           monotonically onto [0, 1], reciprocal IORs mirrored, with nodes crowding towards
-//           eta = 1: near grazing the Fresnel factor depends on (eta^2 - 1) / mu^2, so it
-//           changes fastest there (bases under a coat of similar IOR live there).
+// The 3D tables of the dielectric interface (tables 1-3) replace c_mu by a view axis that
+// follows the relative IOR and split eta into two halves (openpbr_lut_3d_coordinates):
+//   c_eta: eta < 1 and eta > 1 are two separate halves of OPENPBR_LUT_3D_ETA_SIZE / 2 nodes,
+//          each evenly spaced in w = asinh(s / s_0) + 4 s from s = s_0 (the node at eta = 1) to
+//          s = 1 (eta = 1/3 or 3), s = sqrt(2 |y|), y = (eta - 1) / (eta + 1), s_0 =
+//          OPENPBR_LUT_ETA_KNEE: s is proportional to the critical cosine below near eta = 1,
+//          and logarithmic steps in it there keep the ratio of the view cosines that
+//          neighbouring eta slices put on one node near 1.6 (24 nodes), so the albedos of rough
+//          lobes, which change on the scale of mu itself, stay smooth along eta; the linear
+//          term keeps steps of s below 0.1 towards the range ends (asinh alone left eta nodes at
+//          1.29, 1.65 and 3: white furnace of glass of IOR 2 at normal view 0.987);
+//   u_mu:  sqrt(mu) warped piecewise linearly so that the critical cosine
+//          mu_c = sqrt(1 - min(eta, 1/eta)^2) always lies at u_mu = 1/2 (a node):
+//          u_mu = sqrt(mu / mu_c) / 2 below it, 1/2 + (sqrt(mu) - sqrt(mu_c)) / (2 (1 - sqrt(mu_c)))
+//          above it. Why: below eta = 1 total internal reflection sets in at the view cosine mu_c
+//          (Snell's law, sin(theta) = eta), a kink in every albedo that moves across the whole mu
+//          axis as eta goes from 1/3 to 1; above eta = 1 the Fresnel factor at grazing views is a
+//          function of mu / sqrt(eta^2 - 1) (Fresnel's equations with cos_t^2 = 1 - (1 - mu^2) /
+//          eta^2), whose scale is the same mu_c to first order in eta - 1. On a fixed mu axis both
+//          fall inside a cell of one eta node and outside that of the next, and interpolating
+//          along eta mixed the two (errors up to 0.97 in E_R at eta 0.999); on this axis the
+//          nodes of neighbouring eta slices sit at the same fraction of mu_c.
+// The two nodes at eta = 1 hold the one-sided limits (s = s_0, eta = 1 -/+ 2^-20): at grazing
+// views the Fresnel factor tends to a function of mu / mu_c that differs between the sides (1
+// under total internal reflection below eta = 1), and is 0 at eta = 1 itself. Closer to
+// eta = 1 the look-up reads the limit node.
 // The 4D table of anisotropic GGX adds two axes (see openpbr_lut_anisotropy_coordinate and
 // openpbr_lut_azimuth_coordinate below):
 //   c_a   = 1 - sqrt(1 - a), a the OpenPBR anisotropy: nodes crowd towards a = 1, where
@@ -35,16 +57,27 @@
 
 #include "math/openpbr_math.h"
 
-// Table sizes (the generator reads the same defines), e.g. 32 x 32 for the 2D table. The 3D
-// size is odd so a node lies exactly at eta = 1 (c_eta = 0.5): the albedos are not smooth
-// across eta = 1 (total internal reflection starts below it), and interpolation must not mix
-// the two sides.
+// Table sizes (the generator reads the same defines; every other file takes them from here),
+// e.g. 32 x 32 for the 2D table and 33 x 33 x 48 (u_mu, r, c_eta) for the 3D tables. The eta
+// size is even: two halves, eta < 1 and eta > 1, each ending in its own node at eta = 1 (the
+// albedos are not smooth across eta = 1, and interpolation never mixes the two sides).
 #ifndef OPENPBR_LUT_2D_SIZE
 #define OPENPBR_LUT_2D_SIZE 32
 #endif
 #ifndef OPENPBR_LUT_3D_SIZE
-#define OPENPBR_LUT_3D_SIZE 25
+#define OPENPBR_LUT_3D_SIZE 33
 #endif
+#ifndef OPENPBR_LUT_3D_ETA_SIZE
+#define OPENPBR_LUT_3D_ETA_SIZE 48
+#endif
+// Weight of the linear term of the eta axis (see c_eta above), e.g. 4.
+#define OPENPBR_LUT_ETA_LINEAR_WEIGHT 4.0f
+// The eta axis' knee s_0 = 2^-10, e.g. 9.765625e-4: the eta = 1 nodes lie at s = s_0, i.e.
+// |eta - 1| = 2^-20 (to first order): close enough to be the one-sided limits, far enough that
+// their critical cosine (1.4e-3) lies above the smallest view cosine OPENPBR_LUT_MIN_VIEW_COSINE.
+#define OPENPBR_LUT_ETA_KNEE 9.765625e-4f
+// Distance from eta = 1 below which the critical cosine is that of the eta = 1 nodes, 2^-20.
+#define OPENPBR_LUT_UNIT_ETA_STEP 9.5367431640625e-7f
 
 // Smallest view cosine the tables hold, e.g. 1e-4: the generator's floor (minimum_mu in
 // host/tables/lut_generator.cpp); openpbr_prepare raises closer-to-grazing views to it.
@@ -76,7 +109,7 @@
 //    high) then comes from table 0's finer grid, and the 4D grid holds only what anisotropy
 //    changes.
 #define OPENPBR_LUT_2D_COUNT (OPENPBR_LUT_2D_SIZE * OPENPBR_LUT_2D_SIZE)
-#define OPENPBR_LUT_3D_COUNT (OPENPBR_LUT_3D_SIZE * OPENPBR_LUT_3D_SIZE * OPENPBR_LUT_3D_SIZE)
+#define OPENPBR_LUT_3D_COUNT (OPENPBR_LUT_3D_SIZE * OPENPBR_LUT_3D_SIZE * OPENPBR_LUT_3D_ETA_SIZE)
 #define OPENPBR_LUT_4D_COUNT \
     (OPENPBR_LUT_4D_SIZE * OPENPBR_LUT_4D_SIZE * OPENPBR_LUT_4D_ANISOTROPY_SIZE * OPENPBR_LUT_4D_ANISOTROPY_SIZE)
 #define OPENPBR_LUT_GGX_ALBEDO_OFFSET 0
@@ -138,7 +171,7 @@ static const float openpbr_lut_data[OPENPBR_LUT_TOTAL_COUNT] = {
 #define OPENPBR_LUT_FETCH(index) openpbr_lut_data[index]
 #elif defined(OPENPBR_LANGUAGE_TARGET_CUDA)
 namespace openpbr {
-// Global memory, not __constant__: the tables (187 KiB) exceed the 64 KiB constant bank.
+// Global memory, not __constant__: the tables (about 0.2 MiB) exceed the 64 KiB constant bank.
 __device__ const float openpbr_lut_data_device[OPENPBR_LUT_TOTAL_COUNT] = {
 #include "generated/openpbr_lut_values.inc"
 };
@@ -242,10 +275,41 @@ inline const float* openpbr_lut_data = nullptr;
 
 OPENPBR_NAMESPACE_BEGIN
 
-OPENPBR_FUNC float openpbr_lut_eta_coordinate(float eta)
+// Critical cosine of the interface of relative IOR eta, mu_c = sqrt(1 - min(eta, 1/eta)^2),
+// written as |eta - 1| (eta + 1) / max(eta, 1)^2 so that it keeps its precision near eta = 1,
+// where |eta - 1| is floored at OPENPBR_LUT_UNIT_ETA_STEP (the eta = 1 nodes' distance).
+OPENPBR_FUNC float openpbr_lut_critical_cosine(float eta)
+{
+    const float distance = max(abs(eta - 1.0f), OPENPBR_LUT_UNIT_ETA_STEP);
+    const float larger = max(eta, 1.0f);
+    return sqrt(min(distance * (eta + 1.0f) / (larger * larger), 1.0f));
+}
+// The 3D tables' view axis u_mu in [0, 1]: sqrt(mu) with the critical cosine at 1/2 (see the
+// top of this file). mu_c <= sqrt(8/9) on [1/3, 3], so 1 - sqrt(mu_c) >= 0.029.
+OPENPBR_FUNC float openpbr_lut_view_coordinate(float mu, float critical_cosine)
+{
+    const float m = sqrt(clamp(mu, 0.0f, 1.0f));
+    const float c = sqrt(critical_cosine);
+    return m < c ? 0.5f * m / c : 0.5f + 0.5f * (m - c) / (1.0f - c);
+}
+// Node coordinate along eta of the 3D tables, in [0, OPENPBR_LUT_3D_ETA_SIZE - 1]: [0, H - 1]
+// for eta < 1 (node H - 1 the limit eta -> 1 from below), [H, 2 H - 1] for eta >= 1 (node H the
+// limit from above), H = OPENPBR_LUT_3D_ETA_SIZE / 2.
+OPENPBR_FUNC float openpbr_lut_asinh(float x) { return log(x + sqrt(x * x + 1.0f)); }
+OPENPBR_FUNC float openpbr_lut_eta_node(float eta)
 {
     const float y = (eta - 1.0f) / (eta + 1.0f);
-    return clamp(0.5f + (y < 0.0f ? -1.0f : 1.0f) * sqrt(0.5f * abs(y)), 0.0f, 1.0f);
+    const float s = min(sqrt(2.0f * abs(y)), 1.0f);
+    const float knee = OPENPBR_LUT_ETA_KNEE;
+    // (not "linear": an HLSL keyword)
+    const float slope = OPENPBR_LUT_ETA_LINEAR_WEIGHT;
+    const float first = openpbr_lut_asinh(1.0f) + slope * knee;
+    const float w = clamp((openpbr_lut_asinh(s / knee) + slope * s - first) /
+                              (openpbr_lut_asinh(1.0f / knee) + slope - first),
+                          0.0f, 1.0f);
+    const int half_size = OPENPBR_LUT_3D_ETA_SIZE / 2;
+    const float span = float(half_size - 1);
+    return eta < 1.0f ? (1.0f - w) * span : float(half_size) + w * span;
 }
 OPENPBR_FUNC float openpbr_lut_roughness_coordinate(float alpha) { return clamp(sqrt(alpha), 0.0f, 1.0f); }
 OPENPBR_FUNC float openpbr_lut_mu_coordinate(float mu) { return sqrt(clamp(mu, 0.0f, 1.0f)); }
@@ -333,7 +397,8 @@ OPENPBR_FUNC int openpbr_lut_texture_id_3d(int offset)
 // The filtered value of 3D table `offset` at node coordinates (fx, fy, fz).
 OPENPBR_FUNC float openpbr_lut_texture_3d(int offset, float fx, float fy, float fz)
 {
-    const vec3 uvw = (vec3(fx, fy, fz) + vec3(0.5f)) / float(OPENPBR_LUT_3D_SIZE);
+    const vec3 uvw = (vec3(fx, fy, fz) + vec3(0.5f)) /
+                     vec3(float(OPENPBR_LUT_3D_SIZE), float(OPENPBR_LUT_3D_SIZE), float(OPENPBR_LUT_3D_ETA_SIZE));
     const int lut_id = openpbr_lut_texture_id_3d(offset);
     if (lut_id == OPENPBR_LUT_TEXTURE_DIELECTRIC_REFLECTION)
     {
@@ -362,81 +427,59 @@ OPENPBR_FUNC float openpbr_lut_3d_slice(int offset, int x0, int y0, int z, float
 #endif
 
 // Along eta in the 3D table at mu weight tx and roughness weight ty of the cell (x0, y0):
-// quadratic through a 3-node Lagrange stencil around the nearest node, kept on one side of the
-// eta = 1 node where the albedos have a kink (total internal reflection starts below it). Why
-// quadratic: the albedos bend strongly along eta for rough interfaces seen from inside; linear
+// quadratic through a 3-node Lagrange stencil around the nearest node, kept within the half of
+// the eta axis that fz lies in (eta < 1 or eta >= 1, see openpbr_lut_eta_node). Why quadratic:
+// the albedos bend strongly along eta for rough interfaces seen from inside; linear
 // interpolation left 1 % errors in E_RT (white furnace of rough glass from inside 0.990 at
 // normal incidence), the quadratic stencil cut the largest E_RT error at view cos >= 0.1 from
-// 0.0145 to 0.0039 (1500 random points against Monte Carlo). upper_bracket: the result is at
-// least either node bracketing fz (see openpbr_lut_3d).
-OPENPBR_FUNC float openpbr_lut_3d_along_eta(int offset, int x0, int y0, float tx, float ty, float fz, bool upper_bracket)
+// 0.0145 to 0.0039 (1500 random points against Monte Carlo).
+OPENPBR_FUNC float openpbr_lut_3d_along_eta(int offset, int x0, int y0, float tx, float ty, float fz)
 {
-    const int middle = (OPENPBR_LUT_3D_SIZE - 1) / 2;
-    const int low = fz < float(middle) ? 0 : middle;
-    const int high = fz < float(middle) ? middle : OPENPBR_LUT_3D_SIZE - 1;
-    const int centre = clamp(int(fz + 0.5f), low + 1, high - 1);
+    const int half_size = OPENPBR_LUT_3D_ETA_SIZE / 2;
+    const int low = fz < float(half_size) ? 0 : half_size;
+    const int centre = clamp(int(fz + 0.5f), low + 1, low + half_size - 2);
     const float t = fz - float(centre);
     const float v_minus = openpbr_lut_3d_slice(offset, x0, y0, centre - 1, tx, ty);
     const float v_zero = openpbr_lut_3d_slice(offset, x0, y0, centre, tx, ty);
     const float v_plus = openpbr_lut_3d_slice(offset, x0, y0, centre + 1, tx, ty);
-    const float quadratic = v_zero + 0.5f * t * (v_plus - v_minus) + 0.5f * t * t * (v_plus - 2.0f * v_zero + v_minus);
-    if (!upper_bracket)
-    {
-        return quadratic;
-    }
-    const int z0 = min(int(fz), OPENPBR_LUT_3D_SIZE - 2);
-    return max(quadratic, max(openpbr_lut_3d_slice(offset, x0, y0, z0, tx, ty),
-                              openpbr_lut_3d_slice(offset, x0, y0, z0 + 1, tx, ty)));
+    return v_zero + 0.5f * t * (v_plus - v_minus) + 0.5f * t * t * (v_plus - 2.0f * v_zero + v_minus);
 }
 
-// Views at cosines below this, e.g. 0.1, read the 3D tables rounded up along eta
-// (openpbr_lut_3d): the white furnace's range starts here.
-#define OPENPBR_LUT_RESOLVED_VIEW_COSINE 0.1f
-
-// 3D look-up: bilinear in (mu, r), quadratic along eta (openpbr_lut_3d_along_eta, 12 fetches).
-// Where the nodes do not resolve the albedo it returns the largest bracketing node instead
-// (24 to 48 fetches there):
-//  - along eta where round_up_eta is set (the callers set it at grazing views, mu below
-//    OPENPBR_LUT_RESOLVED_VIEW_COSINE, and for E_R and E_T0 below eta = 1): there the
-//    transmitted direction turns grazing, the Fresnel factor jumps to 1 at grazing or total
-//    internal reflection sets in within a fraction of a cell (the albedos depend on
-//    (eta^2 - 1) / mu^2, like the Fresnel factor). Measured against Monte Carlo, interpolation
-//    underestimated E_T0 by up to a factor 1.9 (rough glass of IOR 1.0001 at view cos 1e-6: true
-//    0.99, interpolated 0.54; IOR 0.999 at cos 0.1, roughness 0.05: true 1.00, interpolated
-//    0.52) and E_R by up to 1.7 (IOR 1.001 at cos 1e-4, roughness 0.04: true 0.68, 0.40);
-//  - along mu in the first mu cell (mu below 1 / (N - 1)^2, about 0.0017), between the
-//    generator's floor mu = 1e-4 and the first node, where E_R of smooth lobes is concave in
-//    sqrt(mu) (coat of roughness 0.1 and IOR 1.6 at cos 1e-3: true 0.820, interpolated 0.814).
-// Every caller reads these albedos as a divisor of a compensation (E_T0, E_RT) or as the part of
-// the light a layer takes before the layers below (E_R), so an albedo read too high can only lose
-// energy and one read too low gains it: an unresolved region rounds up. Each albedo is monotonic
-// in eta within a cell (the Fresnel factor grows with |eta - 1|, total internal reflection with
-// 1 - eta), so the larger bracketing node bounds it. The white furnace's range (view cos >= 0.1,
-// IOR >= 1 from outside) keeps the interpolation.
-OPENPBR_FUNC float openpbr_lut_3d(int offset, float mu, float r, float x, bool round_up_eta)
+// 3D look-up of table `offset` at view cosine mu, GGX alpha and relative IOR eta: bilinear in
+// (u_mu, r), quadratic along eta (openpbr_lut_3d_along_eta, 12 fetches). In the first mu cell
+// (between the generator's floor mu = 1e-4 and the first node), where E_R of smooth lobes is
+// concave in the view axis (coat of roughness 0.1 and IOR 1.6 at cos 1e-3: true 0.820,
+// interpolated 0.814), it returns the larger of the two mu nodes' values (24 fetches): every
+// caller reads these albedos as a divisor of a compensation (E_T0, E_RT) or as the part of the
+// light a layer takes before the layers below (E_R), so an albedo read too high can only lose
+// energy, and one read too low gains it.
+OPENPBR_FUNC float openpbr_lut_3d(int offset, float mu, float alpha, float eta)
 {
     const float scale = float(OPENPBR_LUT_3D_SIZE - 1);
+    const float critical_cosine = openpbr_lut_critical_cosine(eta);
+    const float view = openpbr_lut_view_coordinate(mu, critical_cosine);
     // NaN-safe clamps: a NaN coordinate (e.g. from a NaN wavelength) would make int() undefined.
-    const float fx = openpbr_clamp_finite(mu, 0.0f, 1.0f) * scale;
-    const float fy = openpbr_clamp_finite(r, 0.0f, 1.0f) * scale;
-    const float fz = openpbr_clamp_finite(x, 0.0f, 1.0f) * scale;
+    const float fx = openpbr_clamp_finite(view, 0.0f, 1.0f) * scale;
+    const float fy = openpbr_clamp_finite(openpbr_lut_roughness_coordinate(alpha), 0.0f, 1.0f) * scale;
+    const float fz = openpbr_clamp_finite(openpbr_lut_eta_node(eta), 0.0f, float(OPENPBR_LUT_3D_ETA_SIZE - 1));
 #if OPENPBR_USE_TEXTURE_LUTS && OPENPBR_LUT_TEXTURE_TRILINEAR_ETA
-    // One trilinear fetch: linear along eta, no upper bracket (slang/openpbr_lut_textures.h).
-    OPENPBR_UNUSED(round_up_eta);
+    // One trilinear fetch: linear along eta (slang/openpbr_lut_textures.h). fz never lies
+    // between the two eta = 1 nodes, so the filter never mixes the halves.
     return openpbr_lut_texture_3d(offset, fx, fy, fz);
 #endif
     const int x0 = min(int(fx), OPENPBR_LUT_3D_SIZE - 2);
     const int y0 = min(int(fy), OPENPBR_LUT_3D_SIZE - 2);
     const float tx = fx - float(x0);
     const float ty = fy - float(y0);
-    // Exactly on a node (e.g. eta = 1: a coat over a base of the same IOR) the node itself holds.
-    const bool between_eta_nodes = round_up_eta && fz > float(min(int(fz), OPENPBR_LUT_3D_SIZE - 2));
-    if (x0 > 0 || tx == 0.0f)
+    // Nodes below the view coordinate of the generator's floor mu = 1e-4 hold the floor's values
+    // (near eta = 1 the warped axis puts the first nodes there), so a cell starting at one is a
+    // first cell too (IOR 1.0001, roughness 0.3, cos 1e-4: E_T0 interpolated 0.825, true 0.850).
+    const bool first_cell = float(x0) < scale * openpbr_lut_view_coordinate(OPENPBR_LUT_MIN_VIEW_COSINE, critical_cosine);
+    if (!first_cell || tx == 0.0f)
     {
-        return openpbr_lut_3d_along_eta(offset, x0, y0, tx, ty, fz, between_eta_nodes);
+        return openpbr_lut_3d_along_eta(offset, x0, y0, tx, ty, fz);
     }
-    return max(openpbr_lut_3d_along_eta(offset, 0, y0, 0.0f, ty, fz, between_eta_nodes),
-               openpbr_lut_3d_along_eta(offset, 0, y0, 1.0f, ty, fz, between_eta_nodes));
+    return max(openpbr_lut_3d_along_eta(offset, x0, y0, 0.0f, ty, fz), openpbr_lut_3d_along_eta(offset, x0, y0, 1.0f, ty, fz));
 }
 
 
@@ -534,10 +577,17 @@ OPENPBR_FUNC float openpbr_ggx_albedo(float mu, float alpha)
 // Directional albedo of GGX reflection off a dielectric of relative IOR eta (single scattering).
 OPENPBR_FUNC float openpbr_dielectric_reflection_albedo(float mu, float alpha, float eta)
 {
-    return openpbr_lut_3d(OPENPBR_LUT_DIELECTRIC_REFLECTION_OFFSET, openpbr_lut_mu_coordinate(mu), openpbr_lut_roughness_coordinate(alpha),
-                          openpbr_lut_eta_coordinate(eta),
-                          mu < OPENPBR_LUT_RESOLVED_VIEW_COSINE || eta < 1.0f);
+    return openpbr_lut_3d(OPENPBR_LUT_DIELECTRIC_REFLECTION_OFFSET, mu, alpha, eta);
 }
+
+// Smallest E_T0 the transmission compensation 1 / E_T0 divides by, e.g. 1e-3. Below eta = 1
+// seen from outside (a bubble) E_T0 is small where most microfacets reflect totally (0.012 at
+// eta 0.5, roughness 0.5, view cos 0.1), and the compensation hands the transmitted lobe all of
+// 1 - E_R (0.15 there): a floor of 0.05 lost 0.11 of the white furnace there. The weight of a
+// transmitted sample stays below (1 - E_R) / OPENPBR_MIN_TRANSMISSION_ALBEDO.
+#ifndef OPENPBR_MIN_TRANSMISSION_ALBEDO
+#define OPENPBR_MIN_TRANSMISSION_ALBEDO 1e-3f
+#endif
 
 // Directional albedo of the GGX BTDF without its Fresnel factor (single scattering).
 OPENPBR_FUNC float openpbr_dielectric_transmission_albedo(float mu, float alpha, float eta)
@@ -548,9 +598,7 @@ OPENPBR_FUNC float openpbr_dielectric_transmission_albedo(float mu, float alpha,
     OPENPBR_UNUSED(eta);
     return 1.0f;
 #else
-    return openpbr_lut_3d(OPENPBR_LUT_DIELECTRIC_TRANSMISSION_OFFSET, openpbr_lut_mu_coordinate(mu), openpbr_lut_roughness_coordinate(alpha),
-                          openpbr_lut_eta_coordinate(eta),
-                          mu < OPENPBR_LUT_RESOLVED_VIEW_COSINE || eta < 1.0f);
+    return openpbr_lut_3d(OPENPBR_LUT_DIELECTRIC_TRANSMISSION_OFFSET, mu, alpha, eta);
 #endif
 }
 
@@ -563,13 +611,7 @@ OPENPBR_FUNC float openpbr_dielectric_interface_albedo(float mu, float alpha, fl
     OPENPBR_UNUSED(eta);
     return 1.0f;
 #else
-    // Rounded up at grazing views and in the two eta cells around eta = 1 (light leaving nearly
-    // index-matched glass: 1.05 at IOR 1.001, view cos 0.1, roughness 0.3, interpolated).
-    const float eta_coordinate = openpbr_lut_eta_coordinate(eta);
-    const bool unit_eta_cell = abs(eta_coordinate - 0.5f) < 1.0f / float(OPENPBR_LUT_3D_SIZE - 1);
-    return openpbr_lut_3d(OPENPBR_LUT_DIELECTRIC_INTERFACE_OFFSET, openpbr_lut_mu_coordinate(mu),
-                          openpbr_lut_roughness_coordinate(alpha), eta_coordinate,
-                          mu < OPENPBR_LUT_RESOLVED_VIEW_COSINE || unit_eta_cell);
+    return openpbr_lut_3d(OPENPBR_LUT_DIELECTRIC_INTERFACE_OFFSET, mu, alpha, eta);
 #endif
 }
 

@@ -19,6 +19,9 @@
 // value at offset + (z * height + y) * width + x of the flat table (slang/generated/
 // openpbr_lut.bin for ids 0-4, openpbr_fuzz_ltc.bin for ids 5-7): the textures are the flat
 // array's tables with x running fastest, so each is one upload of a contiguous range.
+// Sizes: OPENPBR_LUT_2D_SIZE, OPENPBR_LUT_3D_SIZE (x and y of the 3D tables),
+// OPENPBR_LUT_3D_ETA_SIZE (their z), OPENPBR_LUT_4D_SIZE, OPENPBR_LUT_4D_ANISOTROPY_SIZE of
+// slang/openpbr_lut.h (the shipped values in the table below).
 // Coordinate mapping: the grids are node-centred (openpbr_lut.h), so node i of an axis with N
 // nodes sits at texel centre (i + 0.5) / N; the library converts its node coordinate f in
 // [0, N - 1] to (f + 0.5) / N itself. Hardware filtering between two nodes is then the
@@ -27,9 +30,9 @@
 //
 //   id                                         dim  size (x, y, z)    axes (x, y, z)            flat offset
 //   OPENPBR_LUT_TEXTURE_GGX_ALBEDO          0   2D  32 x 32           c_mu, c_r                 OPENPBR_LUT_GGX_ALBEDO_OFFSET
-//   OPENPBR_LUT_TEXTURE_DIELECTRIC_REFLECTION 1 3D  25 x 25 x 25      c_mu, c_r, c_eta          OPENPBR_LUT_DIELECTRIC_REFLECTION_OFFSET
-//   OPENPBR_LUT_TEXTURE_DIELECTRIC_TRANSMISSION 2 3D 25 x 25 x 25     c_mu, c_r, c_eta          OPENPBR_LUT_DIELECTRIC_TRANSMISSION_OFFSET
-//   OPENPBR_LUT_TEXTURE_DIELECTRIC_INTERFACE 3  3D  25 x 25 x 25      c_mu, c_r, c_eta          OPENPBR_LUT_DIELECTRIC_INTERFACE_OFFSET
+//   OPENPBR_LUT_TEXTURE_DIELECTRIC_REFLECTION 1 3D  33 x 33 x 48      u_mu, c_r, c_eta          OPENPBR_LUT_DIELECTRIC_REFLECTION_OFFSET
+//   OPENPBR_LUT_TEXTURE_DIELECTRIC_TRANSMISSION 2 3D 33 x 33 x 48     u_mu, c_r, c_eta          OPENPBR_LUT_DIELECTRIC_TRANSMISSION_OFFSET
+//   OPENPBR_LUT_TEXTURE_DIELECTRIC_INTERFACE 3  3D  33 x 33 x 48      u_mu, c_r, c_eta          OPENPBR_LUT_DIELECTRIC_INTERFACE_OFFSET
 //   OPENPBR_LUT_TEXTURE_GGX_ANISOTROPY_RATIO 4  3D  16 x 16 x 100     c_mu, c_r, 10 c_phi + c_a OPENPBR_LUT_GGX_ANISOTROPY_RATIO_OFFSET
 //   OPENPBR_LUT_TEXTURE_FUZZ_LTC_A          5   2D  32 x 32           mu, fuzz roughness        OPENPBR_FUZZ_LTC_A_OFFSET (fuzz table)
 //   OPENPBR_LUT_TEXTURE_FUZZ_LTC_B          6   2D  32 x 32           mu, fuzz roughness        OPENPBR_FUZZ_LTC_B_OFFSET (fuzz table)
@@ -42,9 +45,8 @@
 // two sides of eta = 1 (openpbr_lut_3d_along_eta); a trilinear fetch would interpolate
 // linearly. By default the library therefore samples each 3D table at exact eta-node centres
 // (each fetch is a bilinear filter within one eta slice) and keeps its own interpolation along
-// eta: 3 fetches per look-up, 5 where the view is in the first mu cell or the look-up rounds
-// up between eta nodes. OPENPBR_LUT_TEXTURE_TRILINEAR_ETA=1 uses one trilinear fetch instead:
-// cheaper, at the accuracy cost measured in docs/accuracy-vs-time.md.
+// eta: 3 fetches per look-up, 6 where the view is in the first mu cell.
+// OPENPBR_LUT_TEXTURE_TRILINEAR_ETA=1 uses one trilinear fetch instead: cheaper, at the accuracy cost measured in docs/accuracy-vs-time.md.
 #ifndef OPENPBR_LUT_TEXTURES_H
 #define OPENPBR_LUT_TEXTURES_H
 

@@ -57,6 +57,7 @@
     X(uint, OPENPBR_LUT_TEXTURE_BINDING)                      \
     X(uint, OPENPBR_LUT_2D_SIZE)                              \
     X(uint, OPENPBR_LUT_3D_SIZE)                              \
+    X(uint, OPENPBR_LUT_3D_ETA_SIZE)                          \
     X(uint, OPENPBR_LUT_4D_SIZE)                              \
     X(uint, OPENPBR_LUT_4D_ANISOTROPY_SIZE)                   \
     X(uint, OPENPBR_LUT_GGX_ALBEDO_OFFSET)                    \

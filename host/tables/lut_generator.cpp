@@ -362,6 +362,10 @@ int LutLayout::axis_size(const int table, const int axis) const
         throw std::invalid_argument("lut_generator: table " + std::to_string(table) + " has no axis " +
                                     std::to_string(axis));
     }
+    if (axis == 2 && dimensions(table) == 3)
+    {
+        return size_3d_eta;
+    }
     return axis >= 2 && dimensions(table) == 4 ? size_4d_anisotropy : size(table);
 }
 
@@ -394,13 +398,15 @@ static_assert(OPENPBR_LUT_DIELECTRIC_REFLECTION_OFFSET == OPENPBR_LUT_2D_SIZE * 
               "table 1 must follow the 2D table");
 static_assert(OPENPBR_LUT_DIELECTRIC_TRANSMISSION_OFFSET ==
                   OPENPBR_LUT_DIELECTRIC_REFLECTION_OFFSET +
-                      OPENPBR_LUT_3D_SIZE * OPENPBR_LUT_3D_SIZE * OPENPBR_LUT_3D_SIZE,
+                      OPENPBR_LUT_3D_SIZE * OPENPBR_LUT_3D_SIZE * OPENPBR_LUT_3D_ETA_SIZE,
               "table 2 must follow table 1");
 static_assert(OPENPBR_LUT_DIELECTRIC_INTERFACE_OFFSET ==
                   OPENPBR_LUT_DIELECTRIC_TRANSMISSION_OFFSET + OPENPBR_LUT_3D_COUNT,
               "table 3 must follow table 2");
 static_assert(OPENPBR_LUT_GGX_ANISOTROPY_RATIO_OFFSET == OPENPBR_LUT_DIELECTRIC_INTERFACE_OFFSET + OPENPBR_LUT_3D_COUNT,
               "table 4 must follow table 3");
+static_assert(OPENPBR_LUT_3D_ETA_SIZE % 2 == 0 && OPENPBR_LUT_3D_ETA_SIZE >= 6,
+              "the eta axis has two halves of at least 3 nodes (the quadratic stencil)");
 static_assert(OPENPBR_LUT_4D_COUNT == OPENPBR_LUT_4D_SIZE * OPENPBR_LUT_4D_SIZE * OPENPBR_LUT_4D_ANISOTROPY_SIZE *
                                           OPENPBR_LUT_4D_ANISOTROPY_SIZE,
               "table 4 has N x N x M x M nodes");
@@ -409,7 +415,8 @@ static_assert(OPENPBR_LUT_TOTAL_COUNT == OPENPBR_LUT_GGX_ANISOTROPY_RATIO_OFFSET
 
 LutLayout compiled_lut_layout()
 {
-    return LutLayout{OPENPBR_LUT_2D_SIZE, OPENPBR_LUT_3D_SIZE, OPENPBR_LUT_4D_SIZE, OPENPBR_LUT_4D_ANISOTROPY_SIZE};
+    return LutLayout{OPENPBR_LUT_2D_SIZE, OPENPBR_LUT_3D_SIZE, OPENPBR_LUT_4D_SIZE, OPENPBR_LUT_4D_ANISOTROPY_SIZE,
+                     OPENPBR_LUT_3D_ETA_SIZE};
 }
 
 // ---- Estimator -----------------------------------------------------------------------------
@@ -420,6 +427,45 @@ double lut_eta_from_coordinate(const double x)
     const double c = std::clamp(x, 0.0, 1.0) - 0.5;
     const double y = (c < 0.0 ? -2.0 : 2.0) * c * c;
     return (1.0 + y) / (1.0 - y);
+}
+
+double lut_eta_from_node(const int index, const int eta_size)
+{
+    const int half_size = eta_size / 2;
+    const bool below_one = index < half_size;
+    const double w = below_one ? 1.0 - double(index) / double(half_size - 1)
+                               : double(index - half_size) / double(half_size - 1);
+    // w = (v(s) - v(s_0)) / (v(1) - v(s_0)), v(s) = asinh(s / s_0) + k s, inverted by bisection
+    // (v increases).
+    const double knee = double(OPENPBR_LUT_ETA_KNEE);
+    const double linear = double(OPENPBR_LUT_ETA_LINEAR_WEIGHT);
+    const auto v = [&](const double s) { return std::asinh(s / knee) + linear * s; };
+    const double target = v(knee) + w * (v(1.0) - v(knee));
+    double low = knee;
+    double high = 1.0;
+    for (int iteration = 0; iteration < 100; ++iteration)
+    {
+        const double middle = 0.5 * (low + high);
+        (v(middle) < target ? low : high) = middle;
+    }
+    const double s = w <= 0.0 ? knee : (w >= 1.0 ? 1.0 : 0.5 * (low + high));
+    const double y = (below_one ? -0.5 : 0.5) * s * s;
+    return (1.0 + y) / (1.0 - y);
+}
+
+double lut_critical_cosine(const double eta)
+{
+    const double distance = std::max(std::fabs(eta - 1.0), double(OPENPBR_LUT_UNIT_ETA_STEP));
+    const double larger = std::max(eta, 1.0);
+    return std::sqrt(std::min(distance * (eta + 1.0) / (larger * larger), 1.0));
+}
+
+double lut_mu_from_view_coordinate(const double u, const double eta)
+{
+    const double c = std::sqrt(lut_critical_cosine(eta));
+    const double v = std::clamp(u, 0.0, 1.0);
+    const double m = v < 0.5 ? 2.0 * v * c : c + (2.0 * v - 1.0) * (1.0 - c);
+    return std::max(m * m, minimum_mu);
 }
 
 double lut_alpha_from_coordinate(const double r)
@@ -485,21 +531,25 @@ double estimate_lut_entry(const int table, const double mu, const double r, cons
     return estimate_lut_entry(table, mu, r, x, 0.0, samples, seed);
 }
 
-double estimate_lut_entry(const int table, const double mu, const double r, const double x, const double phi,
-                          const std::uint32_t samples, const std::uint64_t seed)
+namespace {
+
+// One entry at physical parameters: mu_value the view cosine, alpha_value the isotropic GGX
+// alpha, eta the relative IOR; r, x and phi are table 4's coordinates.
+double estimate_entry(const int table, const double mu_value, const double alpha_value, const double eta,
+                      const double r, const double x, const double phi, const std::uint32_t samples,
+                      const std::uint64_t seed)
 {
     check_table(table);
     if (samples == 0)
     {
         throw std::invalid_argument("lut_generator: samples must be at least 1");
     }
-    const double mu_value = lut_mu_from_coordinate(mu);
     const double sin_theta = std::sqrt(1.0 - mu_value * mu_value);
     CellSetup cell;
     cell.table = table;
     cell.view = vec3(float(sin_theta), 0.0f, float(mu_value));
-    cell.alpha = vec2(float(lut_alpha_from_coordinate(r)));
-    cell.eta = float(lut_eta_from_coordinate(x));
+    cell.alpha = vec2(float(alpha_value));
+    cell.eta = float(eta);
     if (table == lut_table_ggx_anisotropy_ratio)
     {
         // OpenPBR's anisotropy mapping (openpbr_ggx_alpha) on the floored isotropic alpha, so at
@@ -518,7 +568,7 @@ double estimate_lut_entry(const int table, const double mu, const double r, cons
     cell.inverse_g1_view = 1.0f + cell.lambda_view;
     // Table 4's denominator: the isotropic lobe of table 0 at the same (rotated) view.
     CellSetup isotropic_cell = cell;
-    isotropic_cell.alpha = vec2(float(lut_alpha_from_coordinate(r)));
+    isotropic_cell.alpha = vec2(float(alpha_value));
     isotropic_cell.lambda_view = openpbr_ggx_lambda(isotropic_cell.view, isotropic_cell.alpha);
     isotropic_cell.inverse_g1_view = 1.0f + isotropic_cell.lambda_view;
 
@@ -547,6 +597,35 @@ double estimate_lut_entry(const int table, const double mu, const double r, cons
         return isotropic_sum > 0.0 ? sum / isotropic_sum : 1.0;
     }
     return sum / double(samples);
+}
+
+bool is_dielectric_table(const int table)
+{
+    return table == lut_table_dielectric_reflection || table == lut_table_dielectric_transmission ||
+           table == lut_table_dielectric_interface;
+}
+
+}  // namespace
+
+double estimate_lut_entry(const int table, const double mu, const double r, const double x, const double phi,
+                          const std::uint32_t samples, const std::uint64_t seed)
+{
+    check_table(table);
+    const double eta = is_dielectric_table(table) ? lut_eta_from_coordinate(x) : 1.0;
+    const double mu_value = is_dielectric_table(table) ? lut_mu_from_view_coordinate(mu, eta) : lut_mu_from_coordinate(mu);
+    return estimate_entry(table, mu_value, lut_alpha_from_coordinate(r), eta, r, x, phi, samples, seed);
+}
+
+double estimate_dielectric_entry(const int table, const double mu, const double alpha, const double eta,
+                                 const std::uint32_t samples, const std::uint64_t seed)
+{
+    if (!is_dielectric_table(table))
+    {
+        throw std::invalid_argument("lut_generator: estimate_dielectric_entry takes tables 1-3, got " +
+                                    std::to_string(table));
+    }
+    return estimate_entry(table, std::clamp(mu, minimum_mu, 1.0), std::max(alpha, minimum_alpha), eta, 0.0, 0.0, 0.0,
+                          samples, seed);
 }
 
 float round_to_half(const float value)
@@ -582,8 +661,10 @@ std::string describe(const LutGeneratorOptions& options)
 {
     const LutLayout layout = options.layout();
     std::ostringstream text;
-    const bool valid = layout.size_2d >= 2 && layout.size_3d >= 2 && layout.size_4d >= 2 && layout.size_4d_anisotropy >= 2;
-    text << "openpbr lutgen: 2D " << options.size_2d << ", 3D " << options.size_3d << ", 4D " << options.size_4d << "x"
+    const bool valid = layout.size_2d >= 2 && layout.size_3d >= 2 && layout.size_4d >= 2 && layout.size_4d_anisotropy >= 2 &&
+                       layout.size_3d_eta >= 2;
+    text << "openpbr lutgen: 2D " << options.size_2d << ", 3D " << options.size_3d << "x" << options.size_3d << "x"
+         << options.size_3d_eta << ", 4D " << options.size_4d << "x"
          << options.size_4d << "x" << options.size_4d_anisotropy << "x" << options.size_4d_anisotropy << ", "
          << options.samples << " samples/cell, " << (options.bits == 16 ? "half-rounded" : "float32") << ", "
          << (valid ? layout.total_count() : 0) << " values";
@@ -593,7 +674,8 @@ std::string describe(const LutGeneratorOptions& options)
     }
     if (layout != compiled_lut_layout())
     {
-        text << " (not the compiled layout " << OPENPBR_LUT_2D_SIZE << " / " << OPENPBR_LUT_3D_SIZE << " / "
+        text << " (not the compiled layout " << OPENPBR_LUT_2D_SIZE << " / " << OPENPBR_LUT_3D_SIZE << "x"
+             << OPENPBR_LUT_3D_ETA_SIZE << " / "
              << OPENPBR_LUT_4D_SIZE << " / " << OPENPBR_LUT_4D_ANISOTROPY_SIZE << ")";
     }
     return text.str();
@@ -603,13 +685,16 @@ std::vector<float> generate_lut(const LutGeneratorOptions& options)
 {
     if (options.size_2d < 2 || options.size_2d > maximum_size_2d || options.size_3d < 2 ||
         options.size_3d > maximum_size_3d || options.size_4d < 2 || options.size_4d > maximum_size_4d ||
-        options.size_4d_anisotropy < 2 || options.size_4d_anisotropy > maximum_size_4d)
+        options.size_4d_anisotropy < 2 || options.size_4d_anisotropy > maximum_size_4d || options.size_3d_eta < 6 ||
+        options.size_3d_eta > maximum_size_3d || options.size_3d_eta % 2 != 0)
     {
         throw std::invalid_argument("lut_generator: table sizes must be in [2, " + std::to_string(maximum_size_2d) +
-                                    "] (2D), [2, " + std::to_string(maximum_size_3d) + "] (3D) and [2, " +
-                                    std::to_string(maximum_size_4d) + "] (4D), got " + std::to_string(options.size_2d) +
+                                    "] (2D), [2, " + std::to_string(maximum_size_3d) + "] (3D), [2, " +
+                                    std::to_string(maximum_size_4d) + "] (4D) and an even eta size in [6, " +
+                                    std::to_string(maximum_size_3d) + "], got " + std::to_string(options.size_2d) +
                                     ", " + std::to_string(options.size_3d) + ", " + std::to_string(options.size_4d) +
-                                    " and " + std::to_string(options.size_4d_anisotropy));
+                                    ", " + std::to_string(options.size_4d_anisotropy) + " and eta " +
+                                    std::to_string(options.size_3d_eta));
     }
     if (options.samples == 0)
     {
@@ -652,8 +737,21 @@ std::vector<float> generate_lut(const LutGeneratorOptions& options)
             coordinates[axis] = double(rest % n) / double(n - 1);
             rest /= n;
         }
-        const double value = estimate_lut_entry(table, coordinates[0], coordinates[1], coordinates[2], coordinates[3],
-                                                options.samples, lut_cell_seed(table, local, options.seed));
+        double value = 0.0;
+        if (is_dielectric_table(table))
+        {
+            // The eta node's relative IOR and the view cosine of the warped view axis there.
+            const int eta_index = int(local / (std::size_t(layout.size_3d) * std::size_t(layout.size_3d)));
+            const double eta = lut_eta_from_node(eta_index, layout.size_3d_eta);
+            value = estimate_entry(table, lut_mu_from_view_coordinate(coordinates[0], eta),
+                                   lut_alpha_from_coordinate(coordinates[1]), eta, coordinates[1], 0.0, 0.0,
+                                   options.samples, lut_cell_seed(table, local, options.seed));
+        }
+        else
+        {
+            value = estimate_lut_entry(table, coordinates[0], coordinates[1], coordinates[2], coordinates[3],
+                                       options.samples, lut_cell_seed(table, local, options.seed));
+        }
         data[index] = options.bits == 16 ? round_to_half(float(value)) : float(value);
         progress.cell_done();
     };

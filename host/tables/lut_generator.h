@@ -5,7 +5,10 @@
 //
 // The tables are single-scattering directional albedos of GGX. Tables 0-3 are isotropic with
 // alpha = max(r^2, 1e-4) (r = 0 gives the delta limit) for the view wo = (sqrt(1 - mu^2), 0, mu),
-// mu = max(node, 1e-4), and relative IOR eta = (1 + y) / (1 - y), y = x - 0.5 (eta in [1/3, 3]):
+// mu = max(node, 1e-4). Tables 1-3 are at the relative IOR eta of their eta node
+// (lut_eta_from_node: two halves, eta < 1 and eta > 1, each ending at the one-sided limit
+// eta = 1 -/+ OPENPBR_LUT_UNIT_ETA_STEP) and the view cosine of their view node
+// (lut_mu_from_view_coordinate: sqrt(mu) warped so that the critical cosine of eta is at 1/2):
 //   0 E_ggx(mu, r)   reflection, F = 1:               E[G2(wo, wi) / G1(wo)], wi.z > 0
 //   1 E_R(mu, r, x)  reflection, exact Fresnel:       E[F(wo.h) G2 / G1]
 //   2 E_T0(mu, r, x) transmission, no Fresnel factor: E[G2(wo, wt) / G1(wo)], wt.z < 0, 0 under TIR
@@ -23,8 +26,8 @@
 // the result is deterministic and independent of the thread count. Sums are in double.
 //
 // Layout (the same as slang/openpbr_lut.h, for any sizes): one flat array, table 0 (2D,
-// index = r_index * N2 + mu_index), tables 1, 2, 3 (3D, index = (x_index * N3 + r_index)
-// * N3 + mu_index), then table 4 (4D, index = ((phi_index * M4 + a_index) * N4 + r_index) * N4
+// index = r_index * N2 + mu_index), tables 1, 2, 3 (3D, index = (eta_index * N3 + r_index)
+// * N3 + mu_index, E3 eta nodes), then table 4 (4D, index = ((phi_index * M4 + a_index) * N4 + r_index) * N4
 // + mu_index, N4 nodes on the mu and r axes, M4 on the anisotropy and azimuth axes); node i of
 // an axis has coordinate i / (nodes - 1).
 //
@@ -62,9 +65,10 @@ const char* lut_table_name(int table);
 struct LutLayout
 {
     int size_2d = 0;             // nodes per axis of table 0, e.g. 32
-    int size_3d = 0;             // nodes per axis of tables 1-3, e.g. 25
+    int size_3d = 0;             // nodes on the view and roughness axes of tables 1-3, e.g. 33
     int size_4d = 0;             // nodes on the mu and roughness axes of table 4, e.g. 16
     int size_4d_anisotropy = 0;  // nodes on the anisotropy and azimuth axes of table 4, e.g. 10
+    int size_3d_eta = 0;         // nodes on the eta axis of tables 1-3 (even, >= 6), e.g. 48
 
     int dimensions(int table) const;             // 2, 3 or 4
     int size(int table) const;                   // nodes on the mu (and roughness) axis of that table
@@ -75,7 +79,7 @@ struct LutLayout
     bool operator==(const LutLayout& other) const
     {
         return size_2d == other.size_2d && size_3d == other.size_3d && size_4d == other.size_4d &&
-               size_4d_anisotropy == other.size_4d_anisotropy;
+               size_4d_anisotropy == other.size_4d_anisotropy && size_3d_eta == other.size_3d_eta;
     }
     bool operator!=(const LutLayout& other) const { return !(*this == other); }
 };
@@ -91,23 +95,28 @@ struct LutGeneratorOptions
     int size_3d = compiled_lut_layout().size_3d;
     int size_4d = compiled_lut_layout().size_4d;
     int size_4d_anisotropy = compiled_lut_layout().size_4d_anisotropy;
-    std::uint32_t samples = 1u << 16;  // per cell; powers of two keep the (0, 2)-sequence a net
+    int size_3d_eta = compiled_lut_layout().size_3d_eta;
+    // Per cell, e.g. 16384 (the shipped tables; 2.4x the cells of the earlier 25^3 tables, so
+    // regeneration takes about 2 minutes of 2 cores); powers of two keep the (0, 2)-sequence a net.
+    std::uint32_t samples = 1u << 14;
     int bits = 32;        // 32: float32; 16: each value rounded to the nearest half (still stored as float)
     int threads = 0;      // 0: TBB's default (every core); n > 0: at most n worker threads
     std::uint64_t seed = 0;  // 0: the shipped tables; others give independent replicas (error estimates)
     bool progress = true;         // progress bar on stderr when stderr is a terminal
     bool progress_always = false; // also when it is not (one line per 10%, e.g. for CI logs)
 
-    LutLayout layout() const { return LutLayout{size_2d, size_3d, size_4d, size_4d_anisotropy}; }
+    LutLayout layout() const { return LutLayout{size_2d, size_3d, size_4d, size_4d_anisotropy, size_3d_eta}; }
 };
 
 // Every table of options.layout() in one flat array. Throws std::invalid_argument for sizes
-// below 2 or above 1024 (2D) / 256 (3D) / 64 (4D), samples = 0, bits other than 16 and 32,
+// below 2 or above 1024 (2D) / 256 (3D) / 64 (4D), an odd eta size or one below 6, samples = 0, bits other than 16 and 32,
 // threads < 0.
 std::vector<float> generate_lut(const LutGeneratorOptions& options);
 
 // The estimate of one table entry at arbitrary coordinates (mu, r, x, phi in [0, 1]; x is
-// ignored by table 0 and is the anisotropy coordinate of table 4, phi is read by table 4 only)
+// ignored by table 0, is the anisotropy coordinate of table 4 and for tables 1-3 gives the
+// relative IOR lut_eta_from_coordinate(x), whose critical cosine warps the view coordinate mu
+// there (lut_mu_from_view_coordinate); phi is read by table 4 only)
 // with `samples` samples and digital-shift seed `seed`; generate_lut uses it with
 // seed = lut_cell_seed(table, cell index within the table, options.seed). Exposed for tests and
 // studies.
@@ -115,9 +124,21 @@ double estimate_lut_entry(int table, double mu, double r, double x, double phi, 
                           std::uint64_t seed);
 double estimate_lut_entry(int table, double mu, double r, double x, std::uint32_t samples, std::uint64_t seed);
 std::uint64_t lut_cell_seed(int table, std::size_t cell, std::uint64_t generator_seed = 0);
+// The same estimate for tables 1-3 at a view cosine mu (floored at 1e-4), GGX alpha (floored
+// at 1e-4) and relative IOR eta: what the look-up of slang/openpbr_lut.h approximates there.
+double estimate_dielectric_entry(int table, double mu, double alpha, double eta, std::uint32_t samples,
+                                 std::uint64_t seed);
 
 // The node coordinate -> physical parameter maps of the tables.
 double lut_eta_from_coordinate(double x);    // (1 + y) / (1 - y), y = 2 sgn(x - 0.5) (x - 0.5)^2: 1/3 at 0, 1 at 0.5, 3 at 1
+// Relative IOR of eta node `index` of an axis of `eta_size` nodes (openpbr_lut_eta_node of
+// slang/openpbr_lut.h inverted): 1/3 at 0, 1 - 2^-20 at eta_size / 2 - 1, 1 + 2^-20 at
+// eta_size / 2, 3 at eta_size - 1.
+double lut_eta_from_node(int index, int eta_size);
+double lut_critical_cosine(double eta);  // openpbr_lut_critical_cosine in double
+// The view cosine at view coordinate u in [0, 1] of the 3D tables (openpbr_lut_view_coordinate
+// inverted), floored at 1e-4.
+double lut_mu_from_view_coordinate(double u, double eta);
 double lut_alpha_from_coordinate(double r);  // max(r^2, 1e-4)
 double lut_mu_from_coordinate(double mu);    // max(mu^2, 1e-4): the axis is sqrt(mu)
 double lut_anisotropy_from_coordinate(double a);  // 1 - (1 - a)^2: the axis is 1 - sqrt(1 - anisotropy)

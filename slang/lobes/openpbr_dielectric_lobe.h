@@ -251,6 +251,18 @@ OPENPBR_FUNC OpenPBR_LobeSample openpbr_dielectric_lobe_sample(OPENPBR_IN(OpenPB
     return lobe_sample;
 }
 
+// E_T0 that compensates the entering refraction, floored at OPENPBR_MIN_TRANSMISSION_ALBEDO.
+// At relative IOR exactly 1 the refraction is the delta pass-through of weight
+// G2 / G1 = (1 + Lambda) / (1 + 2 Lambda) (lambda_view: Smith Lambda of the view), which is
+// then E_T0 exactly: the table's one-sided nodes at 1 -/+ 2^-20 interpolate to within 5e-5 of
+// it but not exactly (a mean weight of 1.00503 at roughness 0.05, view cos 0.02).
+OPENPBR_FUNC float openpbr_entering_transmission_albedo(float mu, float table_alpha, float eta, float lambda_view)
+{
+    const float albedo = eta == 1.0f ? (1.0f + lambda_view) / (1.0f + 2.0f * lambda_view)
+                                     : openpbr_dielectric_transmission_albedo(mu, table_alpha, eta);
+    return max(albedo, OPENPBR_MIN_TRANSMISSION_ALBEDO);
+}
+
 // OpenPBR 1.1 "Translucent base" and "Subsurface": refraction into the interior, the
 // transmission-only form. layer_weight is what passes the specular reflection per unit of
 // base, e.g. (1 - E[f^R_specular]) (1 - base_metalness); translucent and subsurface are the
@@ -276,8 +288,9 @@ OPENPBR_FUNC OpenPBR_DielectricLobe openpbr_transmission_lobe_prepare(OPENPBR_IN
     // A delta lobe refracts exactly 1 - F: no compensation (the table near alpha = 0 smears
     // the step at the critical angle when eta < 1 and gained up to 115 % there).
     const float transmission_compensation =
-        openpbr_ggx_is_delta(alpha) ? 1.0f
-                                    : 1.0f / max(openpbr_dielectric_transmission_albedo(mu, table_alpha, eta_channels.y), 0.05f);
+        openpbr_ggx_is_delta(alpha)
+            ? 1.0f
+            : 1.0f / openpbr_entering_transmission_albedo(mu, table_alpha, eta_channels.y, openpbr_ggx_lambda(view, alpha));
     return openpbr_dielectric_lobe_init(vec3(0.0f), transmission_weight * transmission_compensation, alpha, eta_channels,
                                         false, OPENPBR_LOBE_ID_SPECULAR_TRANSMISSION, view);
 }

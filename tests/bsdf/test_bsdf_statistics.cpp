@@ -408,18 +408,8 @@ std::vector<FurnaceCase> furnace_cases()
     std::vector<FurnaceCase> cases;
     for (const host::FurnaceConfig& config : host::white_furnace_configs())
     {
-        // Of the relative-IOR sweep, the index-matched interfaces (relative IOR exactly 1: rough
-        // glass of IOR 1, specular_weight 0 on glass, water in water) are checked here: their
-        // interface is a delta pass-through at every roughness (openpbr_dielectric_lobe.h). The
-        // other sweep rows depend on the compensation tables' eta axis and are reported by
-        // `openpbr furnace --filter sweep_` (README "Known limits" lists the rows still outside).
-        const bool index_matched = config.name.find("_eta1_") != std::string::npos ||
-                                   config.name.find("_specular_weight0_") != std::string::npos ||
-                                   config.name.find("_in_water_ior1p33_") != std::string::npos;
-        if (config.expectation == host::FurnaceExpectation::relative_ior_sweep && !index_matched)
-        {
-            continue;
-        }
+        // Every row of the relative-IOR sweep included: a row outside the sweep's band is held
+        // to its measured band of host::furnace_known_limits() (README "Known limits").
         for (float view_cos : host::white_furnace_view_cosines())
         {
             for (host::FurnaceSide side : config.sides)
@@ -468,13 +458,21 @@ TEST_P(WhiteFurnace, Albedo)
         // grazing views (only the 1.005 bound applies) cosine-sampled EON has heavy-tailed
         // weights (pi f / rho grows like sigma / max(mu_i, mu_o)), so there 4M samples only
         // reach a few 1e-3.
-        const double max_standard_error = c.view_cos >= host::furnace_tolerance_min_cos ? 1e-3 : 5e-3;
+        // A relative IOR below 1 seen from outside hands the light that the mostly totally
+        // reflecting interface does not reflect, 1 - E_R, to the few microfacets that transmit,
+        // weight (1 - E_R) / E_T0 (up to 1000, OPENPBR_MIN_TRANSMISSION_ALBEDO): measured
+        // standard errors up to 0.009 at 65536 samples (relative IOR 0.67, roughness 0.5, view
+        // cos 0.1), 1.2e-3 at 4M, so those sweep rows get 3e-3.
+        const double max_standard_error =
+            c.view_cos >= host::furnace_tolerance_min_cos ? (sweep ? 3e-3 : 1e-3) : 5e-3;
         EXPECT_LT(se, max_standard_error) << "channel " << channel << ": albedo " << a << " from "
                                           << albedo.sample_count << " samples";
-        EXPECT_LE(a - 3.0 * se, host::furnace_max_albedo)
-            << "energy gain, channel " << channel << ": albedo " << a << " +- " << se;
-        EXPECT_GE(a + 3.0 * se, host::furnace_min_albedo(c.config->expectation, c.view_cos))
-            << "white furnace, channel " << channel << ": albedo " << a << " +- " << se;
+        const host::FurnaceBand band = host::furnace_band(*c.config, c.side, c.view_cos);
+        EXPECT_LE(a - 3.0 * se, band.max_albedo)
+            << "energy gain, channel " << channel << ": albedo " << a << " +- " << se
+            << (band.known_limit ? " (known limit)" : "");
+        EXPECT_GE(a + 3.0 * se, band.min_albedo) << "white furnace, channel " << channel << ": albedo " << a << " +- "
+                                                 << se << (band.known_limit ? " (known limit)" : "");
         if (c.config->expectation == host::FurnaceExpectation::energy_conserving &&
             c.view_cos >= host::furnace_tolerance_min_cos)
         {
