@@ -64,8 +64,7 @@ std::vector<OpenPBR_PreparedBsdf> prepared_set(const OpenPBR_ResolvedInputs& inp
 }
 
 // One prepared BSDF per view; `call(bsdf, index)` is the measured work for direction `index`.
-template <typename Call>
-void benchmark_prepared(benchmark::State& state, const OpenPBR_ResolvedInputs& inputs, Call call)
+template <typename Call> void benchmark_prepared(benchmark::State& state, const OpenPBR_ResolvedInputs& inputs, Call call)
 {
     const std::vector<OpenPBR_PreparedBsdf> prepared = prepared_set(inputs);
     int i = 0;
@@ -79,9 +78,8 @@ void benchmark_prepared(benchmark::State& state, const OpenPBR_ResolvedInputs& i
 
 void benchmark_eval(benchmark::State& state, const OpenPBR_ResolvedInputs& inputs)
 {
-    benchmark_prepared(state, inputs, [](const OpenPBR_PreparedBsdf& bsdf, int i) {
-        return openpbr_eval(bsdf, directions().lights[i]);
-    });
+    benchmark_prepared(state, inputs,
+                       [](const OpenPBR_PreparedBsdf& bsdf, int i) { return openpbr_eval(bsdf, directions().lights[i]); });
 }
 
 void benchmark_sample(benchmark::State& state, const OpenPBR_ResolvedInputs& inputs)
@@ -93,9 +91,8 @@ void benchmark_sample(benchmark::State& state, const OpenPBR_ResolvedInputs& inp
 
 void benchmark_pdf(benchmark::State& state, const OpenPBR_ResolvedInputs& inputs)
 {
-    benchmark_prepared(state, inputs, [](const OpenPBR_PreparedBsdf& bsdf, int i) {
-        return openpbr_pdf(bsdf, directions().lights[i]);
-    });
+    benchmark_prepared(state, inputs,
+                       [](const OpenPBR_PreparedBsdf& bsdf, int i) { return openpbr_pdf(bsdf, directions().lights[i]); });
 }
 
 // One feature of the every-lobe material: its name and how it is switched on and off. The

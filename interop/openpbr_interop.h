@@ -47,9 +47,10 @@
 #undef OPENPBR_LANGUAGE_TARGET_SLANG
 #endif
 
-#if (defined(OPENPBR_LANGUAGE_TARGET_SLANG) + defined(OPENPBR_LANGUAGE_TARGET_CUDA) +                                 \
-     (defined(OPENPBR_LANGUAGE_TARGET_METAL) || defined(OPENPBR_LANGUAGE_TARGET_MSL)) +                              \
-     defined(OPENPBR_LANGUAGE_TARGET_CPP) + defined(OPENPBR_LANGUAGE_TARGET_GLSL) + defined(OPENPBR_LANGUAGE_TARGET_HLSL)) > 1
+#if (defined(OPENPBR_LANGUAGE_TARGET_SLANG) + defined(OPENPBR_LANGUAGE_TARGET_CUDA) +   \
+     (defined(OPENPBR_LANGUAGE_TARGET_METAL) || defined(OPENPBR_LANGUAGE_TARGET_MSL)) + \
+     defined(OPENPBR_LANGUAGE_TARGET_CPP) + defined(OPENPBR_LANGUAGE_TARGET_GLSL) +     \
+     defined(OPENPBR_LANGUAGE_TARGET_HLSL)) > 1
 #error "openpbr_interop.h: more than one OPENPBR_LANGUAGE_TARGET_* is defined; set at most one"
 #endif
 
@@ -62,7 +63,7 @@
 #endif
 
 #if !defined(OPENPBR_LANGUAGE_TARGET_SLANG) && !defined(OPENPBR_LANGUAGE_TARGET_CUDA) && \
-    !defined(OPENPBR_LANGUAGE_TARGET_METAL) && !defined(OPENPBR_LANGUAGE_TARGET_CPP) &&   \
+    !defined(OPENPBR_LANGUAGE_TARGET_METAL) && !defined(OPENPBR_LANGUAGE_TARGET_CPP) &&  \
     !defined(OPENPBR_LANGUAGE_TARGET_GLSL) && !defined(OPENPBR_LANGUAGE_TARGET_HLSL)
 #if defined(__HLSL_VERSION)
 #define OPENPBR_LANGUAGE_TARGET_HLSL 1
@@ -101,11 +102,12 @@
 #endif
 
 // Every backend must provide these; checked here so a new backend fails loudly.
-#if !defined(OPENPBR_FUNC) || !defined(OPENPBR_IN) || !defined(OPENPBR_INOUT) || \
-    !defined(OPENPBR_OUT) || !defined(OPENPBR_UNUSED) || !defined(OPENPBR_NAMESPACE_BEGIN) || !defined(OPENPBR_NAMESPACE_END) || \
+#if !defined(OPENPBR_FUNC) || !defined(OPENPBR_IN) || !defined(OPENPBR_INOUT) || !defined(OPENPBR_OUT) || \
+    !defined(OPENPBR_UNUSED) || !defined(OPENPBR_NAMESPACE_BEGIN) || !defined(OPENPBR_NAMESPACE_END) ||   \
     !defined(OPENPBR_DECLARE_SPECIALIZATION_CONSTANT) || !defined(OPENPBR_GET_SPECIALIZATION_CONSTANT)
 #if OPENPBR_USE_CUSTOM_INTEROP
-#error "openpbr_interop.h: OPENPBR_USE_CUSTOM_INTEROP=1 but the host's interop layer lacks one of OPENPBR_FUNC, OPENPBR_IN, OPENPBR_INOUT, OPENPBR_OUT, OPENPBR_UNUSED, OPENPBR_NAMESPACE_BEGIN/END, OPENPBR_DECLARE/GET_SPECIALIZATION_CONSTANT"
+#error \
+    "openpbr_interop.h: OPENPBR_USE_CUSTOM_INTEROP=1 but the host's interop layer lacks one of OPENPBR_FUNC, OPENPBR_IN, OPENPBR_INOUT, OPENPBR_OUT, OPENPBR_UNUSED, OPENPBR_NAMESPACE_BEGIN/END, OPENPBR_DECLARE/GET_SPECIALIZATION_CONSTANT"
 #else
 #error "openpbr_interop.h: the selected backend does not define the full macro set"
 #endif

@@ -12,7 +12,8 @@
 // GLM_VERSION, which is what can be tested here.
 #if !(defined(OPENPBR_USE_CUSTOM_VEC_TYPES) && OPENPBR_USE_CUSTOM_VEC_TYPES)
 #if !defined(GLM_VERSION)
-#error "OpenPBR (C++): include <glm/glm.hpp> before the OpenPBR headers, or include slang/openpbr.h (which includes it), or define OPENPBR_USE_CUSTOM_VEC_TYPES=1 and provide vec2/vec3/vec4 and their math functions"
+#error \
+    "OpenPBR (C++): include <glm/glm.hpp> before the OpenPBR headers, or include slang/openpbr.h (which includes it), or define OPENPBR_USE_CUSTOM_VEC_TYPES=1 and provide vec2/vec3/vec4 and their math functions"
 #endif
 #include <glm/glm.hpp>
 #define OPENPBR_CPP_USE_VECTOR_LIBRARY using namespace glm;
@@ -26,16 +27,16 @@
 // base_only, puts that translation unit's BSDF in openpbr::base_only (the shared tables stay
 // in openpbr). Unset (the default): namespace openpbr.
 #if defined(OPENPBR_CPP_VARIANT_NAMESPACE)
-#define OPENPBR_NAMESPACE_BEGIN                    \
-    namespace openpbr {                            \
-    namespace OPENPBR_CPP_VARIANT_NAMESPACE {      \
-    OPENPBR_CPP_USE_VECTOR_LIBRARY                 \
+#define OPENPBR_NAMESPACE_BEGIN               \
+    namespace openpbr {                       \
+    namespace OPENPBR_CPP_VARIANT_NAMESPACE { \
+    OPENPBR_CPP_USE_VECTOR_LIBRARY            \
     typedef unsigned int uint;
 #define OPENPBR_NAMESPACE_END \
     }                         \
     }
 #else
-#define OPENPBR_NAMESPACE_BEGIN \
+#define OPENPBR_NAMESPACE_BEGIN    \
     namespace openpbr {            \
     OPENPBR_CPP_USE_VECTOR_LIBRARY \
     typedef unsigned int uint;
@@ -70,13 +71,13 @@ inline std::uint32_t openpbr_runtime_feature_mask = 0xffffffffu;
 OPENPBR_NAMESPACE_BEGIN
 // GLSL has atan(y, x); the dialect spells it atan2 so Slang/HLSL/Metal need no wrapper.
 inline float atan2(float y, float x) { return std::atan2(y, x); }
-#if !(defined(OPENPBR_USE_CUSTOM_SATURATE) && OPENPBR_USE_CUSTOM_SATURATE) && !(defined(OPENPBR_USE_CUSTOM_VEC_TYPES) && OPENPBR_USE_CUSTOM_VEC_TYPES)
+#if !(defined(OPENPBR_USE_CUSTOM_SATURATE) && OPENPBR_USE_CUSTOM_SATURATE) && \
+    !(defined(OPENPBR_USE_CUSTOM_VEC_TYPES) && OPENPBR_USE_CUSTOM_VEC_TYPES)
 // HLSL's saturate, which the dialect uses; a host that has its own (visible from namespace
 // openpbr) sets OPENPBR_USE_CUSTOM_SATURATE=1. With custom vector types the host's library
 // provides it alongside the other math functions.
 inline float saturate(float x) { return glm::clamp(x, 0.0f, 1.0f); }
-template <glm::length_t L, glm::qualifier Q>
-inline glm::vec<L, float, Q> saturate(const glm::vec<L, float, Q>& v)
+template <glm::length_t L, glm::qualifier Q> inline glm::vec<L, float, Q> saturate(const glm::vec<L, float, Q>& v)
 {
     return glm::clamp(v, glm::vec<L, float, Q>(0.0f), glm::vec<L, float, Q>(1.0f));
 }

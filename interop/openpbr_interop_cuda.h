@@ -7,7 +7,8 @@
 #if !(defined(OPENPBR_USE_CUSTOM_VEC_TYPES) && OPENPBR_USE_CUSTOM_VEC_TYPES)
 // As in C++ (openpbr_interop_cpp.h): the host includes <glm/glm.hpp> first.
 #if !defined(GLM_VERSION)
-#error "OpenPBR (CUDA): include <glm/glm.hpp> before the OpenPBR headers, or define OPENPBR_USE_CUSTOM_VEC_TYPES=1 and provide vec2/vec3/vec4 and their math functions"
+#error \
+    "OpenPBR (CUDA): include <glm/glm.hpp> before the OpenPBR headers, or define OPENPBR_USE_CUSTOM_VEC_TYPES=1 and provide vec2/vec3/vec4 and their math functions"
 #endif
 #include <glm/glm.hpp>
 #define OPENPBR_CUDA_USE_VECTOR_LIBRARY using namespace glm;
@@ -15,9 +16,9 @@
 #define OPENPBR_CUDA_USE_VECTOR_LIBRARY
 #endif
 
-#define OPENPBR_NAMESPACE_BEGIN         \
-    namespace openpbr {                 \
-    OPENPBR_CUDA_USE_VECTOR_LIBRARY     \
+#define OPENPBR_NAMESPACE_BEGIN     \
+    namespace openpbr {             \
+    OPENPBR_CUDA_USE_VECTOR_LIBRARY \
     typedef unsigned int uint;
 #define OPENPBR_NAMESPACE_END }
 
@@ -40,7 +41,8 @@
 
 namespace openpbr {
 __host__ __device__ inline float atan2(float y, float x) { return ::atan2f(y, x); }
-#if !(defined(OPENPBR_USE_CUSTOM_SATURATE) && OPENPBR_USE_CUSTOM_SATURATE) && !(defined(OPENPBR_USE_CUSTOM_VEC_TYPES) && OPENPBR_USE_CUSTOM_VEC_TYPES)
+#if !(defined(OPENPBR_USE_CUSTOM_SATURATE) && OPENPBR_USE_CUSTOM_SATURATE) && \
+    !(defined(OPENPBR_USE_CUSTOM_VEC_TYPES) && OPENPBR_USE_CUSTOM_VEC_TYPES)
 // HLSL's saturate, which the dialect uses; OPENPBR_USE_CUSTOM_SATURATE=1 when the host has one.
 __host__ __device__ inline float saturate(float x) { return glm::clamp(x, 0.0f, 1.0f); }
 template <glm::length_t L, glm::qualifier Q>

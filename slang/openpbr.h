@@ -7,10 +7,10 @@
 // first; the lower headers (interop/, openpbr_bsdf.h, openpbr_established_api.h) require GLM to
 // be included before them and say so with an #error otherwise. A host with its own vector
 // library defines OPENPBR_USE_CUSTOM_VEC_TYPES=1 (or OPENPBR_USE_CUSTOM_INTEROP=1) instead.
-#if defined(__cplusplus) && !defined(__METAL_VERSION__) && !defined(OPENPBR_LANGUAGE_TARGET_SLANG) &&          \
-    !defined(OPENPBR_LANGUAGE_TARGET_GLSL) && !defined(OPENPBR_LANGUAGE_TARGET_HLSL) &&                          \
-    !defined(OPENPBR_LANGUAGE_TARGET_METAL) && !defined(OPENPBR_LANGUAGE_TARGET_MSL) &&                          \
-    !(defined(OPENPBR_USE_CUSTOM_VEC_TYPES) && OPENPBR_USE_CUSTOM_VEC_TYPES) &&                                  \
+#if defined(__cplusplus) && !defined(__METAL_VERSION__) && !defined(OPENPBR_LANGUAGE_TARGET_SLANG) && \
+    !defined(OPENPBR_LANGUAGE_TARGET_GLSL) && !defined(OPENPBR_LANGUAGE_TARGET_HLSL) &&               \
+    !defined(OPENPBR_LANGUAGE_TARGET_METAL) && !defined(OPENPBR_LANGUAGE_TARGET_MSL) &&               \
+    !(defined(OPENPBR_USE_CUSTOM_VEC_TYPES) && OPENPBR_USE_CUSTOM_VEC_TYPES) &&                       \
     !(defined(OPENPBR_USE_CUSTOM_INTEROP) && OPENPBR_USE_CUSTOM_INTEROP)
 #include <glm/glm.hpp>
 #endif

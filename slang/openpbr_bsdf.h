@@ -41,10 +41,10 @@ struct OpenPBR_DiffuseSpecular
 
 struct OpenPBR_BsdfSample
 {
-    vec3 direction;                   // world space
-    OpenPBR_DiffuseSpecular weight;   // BSDF x |cos| / pdf, split like eval
-    float pdf;                        // solid-angle pdf, or the discrete probability of a delta lobe
-    OpenPBR_BsdfLobeType lobe_type;   // OPENPBR_LOBE_TYPE_NONE when pdf == 0
+    vec3 direction;                  // world space
+    OpenPBR_DiffuseSpecular weight;  // BSDF x |cos| / pdf, split like eval
+    float pdf;                       // solid-angle pdf, or the discrete probability of a delta lobe
+    OpenPBR_BsdfLobeType lobe_type;  // OPENPBR_LOBE_TYPE_NONE when pdf == 0
 };
 
 // Wavelengths (nm) the three channels stand for when the caller passes none: the dominant
@@ -53,10 +53,7 @@ struct OpenPBR_BsdfSample
 
 // The same as a function, for callers that see the library through a module (Slang `import
 // openpbr;` exports declarations, not macros), e.g. to pass an exterior IOR to openpbr_prepare.
-OPENPBR_FUNC vec3 openpbr_default_rgb_wavelengths_nm()
-{
-    return OPENPBR_DEFAULT_RGB_WAVELENGTHS_NM;
-}
+OPENPBR_FUNC vec3 openpbr_default_rgb_wavelengths_nm() { return OPENPBR_DEFAULT_RGB_WAVELENGTHS_NM; }
 
 struct OpenPBR_PreparedBsdf
 {
@@ -67,17 +64,17 @@ struct OpenPBR_PreparedBsdf
     vec3 coat_view;
     vec3 fuzz_view;
     vec3 view_world;
-    bool inside;               // view from inside a non-thin-walled object: interface only
+    bool inside;  // view from inside a non-thin-walled object: interface only
 
     OpenPBR_FuzzLobe fuzz;
     OpenPBR_MicrofacetReflectionLobe coat;
     OpenPBR_MicrofacetReflectionLobe specular;
     OpenPBR_MicrofacetReflectionLobe metal;
     OpenPBR_DiffuseLobe diffuse;
-    OpenPBR_DiffuseLobe diffuse_transmission;          // thin-walled subsurface, mirrored below
-    OpenPBR_DielectricLobe transmission;               // entering refraction, or the interface from inside
-    OpenPBR_MicrofacetReflectionLobe thin_transmission; // thin-walled un-deflected transmission
-    vec3 pass_through_weight;                          // (1 - geometry_opacity), delta straight through
+    OpenPBR_DiffuseLobe diffuse_transmission;            // thin-walled subsurface, mirrored below
+    OpenPBR_DielectricLobe transmission;                 // entering refraction, or the interface from inside
+    OpenPBR_MicrofacetReflectionLobe thin_transmission;  // thin-walled un-deflected transmission
+    vec3 pass_through_weight;                            // (1 - geometry_opacity), delta straight through
 
     // Factor on every lobe under the coat for a light above: constant + absorbing * T(light),
     // T(light) = coat_color^(1 / (2 mu_t(light))) (spec "Coat", view-dependent absorption).
@@ -100,8 +97,8 @@ struct OpenPBR_PreparedBsdf
     float probability_thin_transmission;
     float probability_pass_through;
 
-    vec3 emission;                       // attenuated emission towards the view, nits
-    OpenPBR_HomogeneousVolume volume;    // interior medium (is_present false when none)
+    vec3 emission;                     // attenuated emission towards the view, nits
+    OpenPBR_HomogeneousVolume volume;  // interior medium (is_present false when none)
 };
 
 // OpenPBR 1.1 "Base Substrate", modulated IOR: specular_weight xi scales F0 through the IOR,
@@ -195,10 +192,7 @@ OPENPBR_FUNC OpenPBR_Basis openpbr_flip_basis(OPENPBR_IN(OpenPBR_Basis) basis)
 // sample weights of 1e4 to 1e22, docs/stability.md). Dropping loses at most 1e-9 of the energy.
 #define OPENPBR_MIN_LOBE_PROBABILITY 1e-9f
 
-OPENPBR_FUNC float openpbr_kept_probability(float probability, float cut)
-{
-    return probability >= cut ? probability : 0.0f;
-}
+OPENPBR_FUNC float openpbr_kept_probability(float probability, float cut) { return probability >= cut ? probability : 0.0f; }
 
 // Channel weights that steer lobe selection towards what a lobe adds to the current path: the
 // path throughput divided by its largest channel, each channel floored at
@@ -242,12 +236,11 @@ OPENPBR_FUNC float openpbr_selection_white_scale(vec3 channel_weights)
 // zero (a lobe whose weight is zero costs nothing): the others keep the empty lobe and
 // selection probability 0, which eval, pdf and sample never look at. With a feature toggled off
 // its weight is the constant 0, so the compiler removes the set-up altogether.
-// `inputs` have passed openpbr_prepare_inputs. exterior_ior: the absolute IOR of the medium the view is in (README "Exterior medium"),
-// already passed through openpbr_contract_exterior_ior. `path_throughput` only steers lobe
-// selection (openpbr_selection_channel_weights); white gives the unweighted probabilities.
+// `inputs` have passed openpbr_prepare_inputs. exterior_ior: the absolute IOR of the medium the view is in (README "Exterior
+// medium"), already passed through openpbr_contract_exterior_ior. `path_throughput` only steers lobe selection
+// (openpbr_selection_channel_weights); white gives the unweighted probabilities.
 OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare_lobes_of(OPENPBR_IN(OpenPBR_ResolvedInputs) inputs, vec3 view_world,
-                                                           vec3 rgb_wavelengths_nm, float exterior_ior,
-                                                           vec3 path_throughput)
+                                                           vec3 rgb_wavelengths_nm, float exterior_ior, vec3 path_throughput)
 {
     OpenPBR_PreparedBsdf bsdf;
     bsdf.view_world = openpbr_safe_normalize(view_world, inputs.geometry_basis.normal);
@@ -257,8 +250,8 @@ OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare_lobes_of(OPENPBR_IN(OpenPBR_Re
     const float fuzz_weight = inputs.fuzz_weight;
     const bool thin_walled = inputs.geometry_thin_walled;
     // Light enters the interior through the dielectric base (translucent or subsurface).
-    const float entering_weight = (1.0f - metalness) *
-                                  (inputs.transmission_weight + (1.0f - inputs.transmission_weight) * inputs.subsurface_weight);
+    const float entering_weight =
+        (1.0f - metalness) * (inputs.transmission_weight + (1.0f - inputs.transmission_weight) * inputs.subsurface_weight);
     const bool back_face = dot(bsdf.view_world, inputs.geometry_basis.normal) < 0.0f;
     bsdf.inside = back_face && !thin_walled && entering_weight > 0.0f && opacity > 0.0f;
     bsdf.basis = back_face ? openpbr_flip_basis(inputs.geometry_basis) : inputs.geometry_basis;
@@ -298,16 +291,17 @@ OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare_lobes_of(OPENPBR_IN(OpenPBR_Re
                                                                        : inputs.specular_ior / inputs.coat_ior;
     const float eta_base = openpbr_modulated_ior(coat_weight > 0.0f ? mix(base_eta, base_over_coat, coat_weight) : base_eta,
                                                  inputs.specular_weight);
-    const vec3 eta_channels = openpbr_dispersive_ior(eta_base, inputs.transmission_dispersion_abbe_number,
-                                                     thin_walled ? 0.0f : inputs.transmission_dispersion_scale,
-                                                     rgb_wavelengths_nm);
+    const vec3 eta_channels =
+        openpbr_dispersive_ior(eta_base, inputs.transmission_dispersion_abbe_number,
+                               thin_walled ? 0.0f : inputs.transmission_dispersion_scale, rgb_wavelengths_nm);
 
     // ---- Roughness: the coat roughens the base (spec "Coat", roughening) ----
     const float coat_roughness = inputs.coat_roughness;
     const float base_roughness =
         coat_weight > 0.0f
             ? mix(inputs.specular_roughness,
-                  pow(min(1.0f, pow(inputs.specular_roughness, 4.0f) + 2.0f * pow(coat_roughness, 4.0f)), 0.25f), coat_weight)
+                  pow(min(1.0f, pow(inputs.specular_roughness, 4.0f) + 2.0f * pow(coat_roughness, 4.0f)), 0.25f),
+                  coat_weight)
             : inputs.specular_roughness;
     const vec2 alpha = openpbr_ggx_alpha(base_roughness, inputs.specular_roughness_anisotropy);
     const OpenPBR_GgxLobeAlbedo base_lobe_albedo =
@@ -465,8 +459,8 @@ OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare_lobes_of(OPENPBR_IN(OpenPBR_Re
         const float k_rough = 1.0f - (1.0f - openpbr_average_fresnel(coat_eta)) * bsdf.coat_inverse_eta_squared;
         const float specular_f0 = openpbr_dielectric_f0(eta_base);
         const float base_surface_roughness =
-            mix(mix(1.0f, inputs.specular_roughness, min(specular_f0 * inputs.specular_weight, 1.0f)), inputs.specular_roughness,
-                metalness);
+            mix(mix(1.0f, inputs.specular_roughness, min(specular_f0 * inputs.specular_weight, 1.0f)),
+                inputs.specular_roughness, metalness);
         const float k = mix(k_specular, k_rough, base_surface_roughness);
         const vec3 delta = vec3(1.0f - k) / max(vec3(1.0f) - base_albedo * k, vec3(1e-6f));
         darkening = mix(vec3(1.0f), delta, coat_weight * inputs.coat_darkening);
@@ -484,10 +478,10 @@ OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare_lobes_of(OPENPBR_IN(OpenPBR_Re
     // not be exact.
     const vec3 channel = openpbr_selection_channel_weights(path_throughput);
     const float white = openpbr_selection_white_scale(channel);
-    const float fuzz_p =
-        fuzz_weight > 0.0f ? openpbr_luminance(fuzz_albedo * channel) : 0.0f;
+    const float fuzz_p = fuzz_weight > 0.0f ? openpbr_luminance(fuzz_albedo * channel) : 0.0f;
     const float coat_p = coat_weight > 0.0f ? under_fuzz * coat_weight * coat_albedo.x * white : 0.0f;
-    const float specular_p = dielectric_weight > 0.0f ? openpbr_luminance(specular_estimate * under_reflected * channel) : 0.0f;
+    const float specular_p =
+        dielectric_weight > 0.0f ? openpbr_luminance(specular_estimate * under_reflected * channel) : 0.0f;
     const float metal_p = metalness > 0.0f ? openpbr_luminance(metal_albedo * under_reflected * channel) : 0.0f;
     const float diffuse_p = openpbr_luminance(diffuse_estimate * under_reflected * channel);
     const float diffuse_transmission_p =
@@ -529,8 +523,7 @@ OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare_lobes_of(OPENPBR_IN(OpenPBR_Re
 // lerp(1, T_coat, C) with T_coat one pass through the coat towards the view; zero when seen
 // from inside a non-thin-walled object (the emitting surface faces outwards).
 // `inputs` have passed openpbr_prepare_inputs.
-OPENPBR_FUNC vec3 openpbr_prepare_emission_of(OPENPBR_IN(OpenPBR_ResolvedInputs) inputs, vec3 view_world,
-                                              float exterior_ior)
+OPENPBR_FUNC vec3 openpbr_prepare_emission_of(OPENPBR_IN(OpenPBR_ResolvedInputs) inputs, vec3 view_world, float exterior_ior)
 {
     if (!(inputs.emission_luminance > 0.0f))
     {
@@ -556,7 +549,8 @@ OPENPBR_FUNC vec3 openpbr_prepare_emission_of(OPENPBR_IN(OpenPBR_ResolvedInputs)
 
 // Staged and full forms. exterior_ior (default 1, air) is the absolute IOR of the medium the
 // view is in, e.g. 1.33 for an object under water; the shorter forms pass 1.
-OPENPBR_FUNC vec3 openpbr_prepare_emission(OPENPBR_IN(OpenPBR_ResolvedInputs) raw_inputs, vec3 view_world, float exterior_ior)
+OPENPBR_FUNC vec3 openpbr_prepare_emission(OPENPBR_IN(OpenPBR_ResolvedInputs) raw_inputs, vec3 view_world,
+                                           float exterior_ior)
 {
     return openpbr_prepare_emission_of(openpbr_prepare_inputs(raw_inputs), view_world,
                                        openpbr_contract_exterior_ior(exterior_ior));
@@ -589,8 +583,7 @@ OPENPBR_FUNC OpenPBR_HomogeneousVolume openpbr_prepare_volume(OPENPBR_IN(OpenPBR
 // openpbr_selection_channel_weights; results stay unbiased): what the established-API
 // openpbr_prepare(inputs, path_throughput, ...) runs. vec3(1.0f) is openpbr_prepare.
 OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare_for_path(OPENPBR_IN(OpenPBR_ResolvedInputs) inputs, vec3 view_world,
-                                                           vec3 rgb_wavelengths_nm, float exterior_ior,
-                                                           vec3 path_throughput)
+                                                           vec3 rgb_wavelengths_nm, float exterior_ior, vec3 path_throughput)
 {
     // The input contract and the toggles run once, for the lobes and the emission.
     const OpenPBR_ResolvedInputs prepared_inputs = openpbr_prepare_inputs(inputs);
@@ -642,17 +635,16 @@ OPENPBR_FUNC OpenPBR_DiffuseSpecular openpbr_eval(OPENPBR_IN(OpenPBR_PreparedBsd
     if (OPENPBR_FEATURE_COAT && bsdf.probability_coat > 0.0f)
     {
         // The coat carries no film (the film lies on the base): no film code here.
-        value.specular =
-            value.specular + openpbr_microfacet_reflection_lobe_eval_with(
-                                 bsdf.coat, bsdf.coat_view, openpbr_to_local(bsdf.coat_basis, light_world), false);
+        value.specular = value.specular +
+                         openpbr_microfacet_reflection_lobe_eval_with(bsdf.coat, bsdf.coat_view,
+                                                                      openpbr_to_local(bsdf.coat_basis, light_world), false);
     }
     vec3 diffuse = vec3(0.0f);
     vec3 specular = vec3(0.0f);
     if (light.z >= 0.0f)
     {
         // The dielectric and metal lobes in one evaluation: one D, G2 and film for both.
-        specular = openpbr_microfacet_reflection_lobe_pair_eval(bsdf.specular, bsdf.probability_specular > 0.0f,
-                                                                bsdf.metal,
+        specular = openpbr_microfacet_reflection_lobe_pair_eval(bsdf.specular, bsdf.probability_specular > 0.0f, bsdf.metal,
                                                                 OPENPBR_FEATURE_METAL && bsdf.probability_metal > 0.0f,
                                                                 bsdf.view, light);
         if (bsdf.probability_diffuse > 0.0f)
@@ -708,8 +700,8 @@ OPENPBR_FUNC float openpbr_pdf(OPENPBR_IN(OpenPBR_PreparedBsdf) bsdf, vec3 light
     }
     if (OPENPBR_FEATURE_COAT && bsdf.probability_coat > 0.0f)
     {
-        pdf += bsdf.probability_coat * openpbr_microfacet_reflection_lobe_pdf(bsdf.coat, bsdf.coat_view,
-                                                                              openpbr_to_local(bsdf.coat_basis, light_world));
+        pdf += bsdf.probability_coat * openpbr_microfacet_reflection_lobe_pdf(
+                                           bsdf.coat, bsdf.coat_view, openpbr_to_local(bsdf.coat_basis, light_world));
     }
     if (bsdf.probability_specular > 0.0f)
     {
@@ -804,9 +796,9 @@ OPENPBR_FUNC OpenPBR_BsdfSample openpbr_sample(OPENPBR_IN(OpenPBR_PreparedBsdf) 
     else if (bsdf.probability_pass_through > 0.0f)
     {
         // Straight on from the unfloored view (bsdf.view may be raised to the tables' floor).
-        lobe_sample = openpbr_make_lobe_sample(-openpbr_to_local(bsdf.basis, bsdf.view_world),
-                                               openpbr_lobe_type(OPENPBR_LOBE_ID_PASS_THROUGH,
-                                                                 OPENPBR_LOBE_TYPE_TRANSMISSION | OPENPBR_LOBE_TYPE_SPECULAR));
+        lobe_sample = openpbr_make_lobe_sample(
+            -openpbr_to_local(bsdf.basis, bsdf.view_world),
+            openpbr_lobe_type(OPENPBR_LOBE_ID_PASS_THROUGH, OPENPBR_LOBE_TYPE_TRANSMISSION | OPENPBR_LOBE_TYPE_SPECULAR));
         lobe_sample.delta_weight = bsdf.pass_through_weight;
         probability = bsdf.probability_pass_through;
         delta_factor = vec3(1.0f);

@@ -110,8 +110,8 @@ OPENPBR_FUNC void openpbr_prepare_emission(OPENPBR_INOUT(OpenPBR_PreparedBsdf) p
 // builds: extinction to [0, OPENPBR_VOLUME_EXTINCTION_MAX], albedo to [0, 1], |g| to
 // OPENPBR_HG_ANISOTROPY_MAX; no extinction in any channel: no medium (is_present false).
 OPENPBR_FUNC OpenPBR_HomogeneousVolume openpbr_make_homogeneous_volume_from_extinction_and_albedo(vec3 extinction,
-                                                                                                 vec3 albedo,
-                                                                                                 float anisotropy)
+                                                                                                  vec3 albedo,
+                                                                                                  float anisotropy)
 {
     OpenPBR_HomogeneousVolume volume;
     volume.extinction = openpbr_clamp_finite(extinction, 0.0f, OPENPBR_VOLUME_EXTINCTION_MAX);
@@ -124,8 +124,8 @@ OPENPBR_FUNC OpenPBR_HomogeneousVolume openpbr_make_homogeneous_volume_from_exti
 // From absorption sigma_a and scattering sigma_s (each >= 0, 1/scene unit): sigma_t = sigma_a +
 // sigma_s, albedo sigma_s / sigma_t (0 where sigma_t is 0).
 OPENPBR_FUNC OpenPBR_HomogeneousVolume openpbr_make_homogeneous_volume_from_absorption_and_scattering(vec3 absorption,
-                                                                                                     vec3 scattering,
-                                                                                                     float anisotropy)
+                                                                                                      vec3 scattering,
+                                                                                                      float anisotropy)
 {
     const vec3 absorbing = openpbr_clamp_finite(absorption, 0.0f, OPENPBR_VOLUME_EXTINCTION_MAX);
     const vec3 scattering_clamped = openpbr_clamp_finite(scattering, 0.0f, OPENPBR_VOLUME_EXTINCTION_MAX);
@@ -293,7 +293,8 @@ OPENPBR_FUNC void openpbr_translucent_shadow_weight_and_prob(OPENPBR_IN(OpenPBR_
             // interior angle, Fresnel's reciprocity), so it never meets total internal reflection.
             const float compensation_undone =
                 lobe.is_delta ? 1.0f : max(openpbr_dielectric_interface_albedo(mu, table_alpha, lobe.eta.y), 0.05f);
-            straight += lobe.transmission_weight * (compensation_undone * (1.0f - openpbr_fresnel_dielectric(mu, 1.0f / lobe.eta.y)));
+            straight += lobe.transmission_weight *
+                        (compensation_undone * (1.0f - openpbr_fresnel_dielectric(mu, 1.0f / lobe.eta.y)));
         }
         else
         {

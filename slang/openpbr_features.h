@@ -106,9 +106,8 @@ OPENPBR_DECLARE_SPECIALIZATION_CONSTANT(EnableMetallic)
     (OPENPBR_GET_SPECIALIZATION_CONSTANT(EnableMetal) && OPENPBR_GET_SPECIALIZATION_CONSTANT(EnableMetallic))
 #endif
 #ifndef OPENPBR_FEATURE_TRANSMISSION
-#define OPENPBR_FEATURE_TRANSMISSION                             \
-    (OPENPBR_GET_SPECIALIZATION_CONSTANT(EnableTransmission) && \
-     OPENPBR_GET_SPECIALIZATION_CONSTANT(EnableTranslucency))
+#define OPENPBR_FEATURE_TRANSMISSION \
+    (OPENPBR_GET_SPECIALIZATION_CONSTANT(EnableTransmission) && OPENPBR_GET_SPECIALIZATION_CONSTANT(EnableTranslucency))
 #endif
 #ifndef OPENPBR_FEATURE_DISPERSION
 #define OPENPBR_FEATURE_DISPERSION OPENPBR_GET_SPECIALIZATION_CONSTANT(EnableDispersion)
@@ -141,8 +140,7 @@ OPENPBR_FUNC OpenPBR_ResolvedInputs openpbr_apply_feature_toggles(OPENPBR_IN(Ope
     inputs.fuzz_weight = OPENPBR_FEATURE_FUZZ ? inputs.fuzz_weight : 0.0f;
     inputs.base_metalness = OPENPBR_FEATURE_METAL ? inputs.base_metalness : 0.0f;
     inputs.transmission_weight = OPENPBR_FEATURE_TRANSMISSION ? inputs.transmission_weight : 0.0f;
-    inputs.transmission_dispersion_scale =
-        OPENPBR_FEATURE_DISPERSION ? inputs.transmission_dispersion_scale : 0.0f;
+    inputs.transmission_dispersion_scale = OPENPBR_FEATURE_DISPERSION ? inputs.transmission_dispersion_scale : 0.0f;
     inputs.thin_film_weight = OPENPBR_FEATURE_THIN_FILM ? inputs.thin_film_weight : 0.0f;
     inputs.geometry_thin_walled = OPENPBR_FEATURE_THIN_WALLED ? inputs.geometry_thin_walled : false;
     inputs.subsurface_weight = OPENPBR_FEATURE_SUBSURFACE ? inputs.subsurface_weight : 0.0f;

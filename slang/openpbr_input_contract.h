@@ -14,7 +14,10 @@
 // changes a value, in the C++ build only, when the application defines it (e.g. to assert).
 #if defined(OPENPBR_CLAMP_HOOK) && (defined(OPENPBR_LANGUAGE_TARGET_CPP))
 #define OPENPBR_REPORT_CLAMP(field, before, after) \
-    if (!((before) == (after))) { OPENPBR_CLAMP_HOOK(#field, before, after); }
+    if (!((before) == (after)))                    \
+    {                                              \
+        OPENPBR_CLAMP_HOOK(#field, before, after); \
+    }
 #else
 #define OPENPBR_REPORT_CLAMP(field, before, after)
 #endif
@@ -34,18 +37,18 @@ OPENPBR_FUNC vec3 openpbr_contract_color(vec3 value, float low, float high, vec3
                 openpbr_contract_float(value.z, low, high, fallback.z));
 }
 
-#define OPENPBR_CONTRACT_FLOAT(field, default_value, low, high)                                  \
-    {                                                                                             \
-        const float before = inputs.field;                                                        \
-        result.field = openpbr_contract_float(before, low, high, defaults.field);                 \
-        OPENPBR_REPORT_CLAMP(field, before, result.field)                                        \
+#define OPENPBR_CONTRACT_FLOAT(field, default_value, low, high)                   \
+    {                                                                             \
+        const float before = inputs.field;                                        \
+        result.field = openpbr_contract_float(before, low, high, defaults.field); \
+        OPENPBR_REPORT_CLAMP(field, before, result.field)                         \
     }
-#define OPENPBR_CONTRACT_COLOR(field, default_r, default_g, default_b, low, high)                 \
-    {                                                                                             \
-        result.field = openpbr_contract_color(inputs.field, low, high, defaults.field);           \
-        OPENPBR_REPORT_CLAMP(field, inputs.field.x, result.field.x)                              \
-        OPENPBR_REPORT_CLAMP(field, inputs.field.y, result.field.y)                              \
-        OPENPBR_REPORT_CLAMP(field, inputs.field.z, result.field.z)                              \
+#define OPENPBR_CONTRACT_COLOR(field, default_r, default_g, default_b, low, high)       \
+    {                                                                                   \
+        result.field = openpbr_contract_color(inputs.field, low, high, defaults.field); \
+        OPENPBR_REPORT_CLAMP(field, inputs.field.x, result.field.x)                     \
+        OPENPBR_REPORT_CLAMP(field, inputs.field.y, result.field.y)                     \
+        OPENPBR_REPORT_CLAMP(field, inputs.field.z, result.field.z)                     \
     }
 // Booleans have no invalid value; the bases and rotations are handled after the table.
 #define OPENPBR_CONTRACT_VECTOR2(field, default_x, default_y)
@@ -73,9 +76,9 @@ OPENPBR_FUNC OpenPBR_ResolvedInputs openpbr_apply_input_contract(OPENPBR_IN(Open
     const OpenPBR_Basis coat_source_basis = coat_basis_set ? inputs.geometry_coat_basis : inputs.geometry_basis;
     result.geometry_coat_basis =
         result.coat_weight > 0.0f
-            ? openpbr_rotate_basis(openpbr_make_basis(coat_source_basis.normal, coat_source_basis.tangent,
-                                                      coat_source_basis.bitangent),
-                                   inputs.coat_anisotropy_rotation)
+            ? openpbr_rotate_basis(
+                  openpbr_make_basis(coat_source_basis.normal, coat_source_basis.tangent, coat_source_basis.bitangent),
+                  inputs.coat_anisotropy_rotation)
             : result.geometry_basis;
     result.specular_anisotropy_rotation = vec2(1.0f, 0.0f);
     result.coat_anisotropy_rotation = vec2(1.0f, 0.0f);

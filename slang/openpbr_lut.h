@@ -178,8 +178,8 @@ __device__ const float openpbr_lut_data_device[OPENPBR_LUT_TOTAL_COUNT] = {
 static const float openpbr_lut_data_host[OPENPBR_LUT_TOTAL_COUNT] = {
 #include "generated/openpbr_lut_values.inc"
 };
-}
-// __host__ __device__ functions see the array of the side they are compiled for.
+}  // namespace openpbr
+   // __host__ __device__ functions see the array of the side they are compiled for.
 #ifdef __CUDA_ARCH__
 #define OPENPBR_LUT_FETCH(index) openpbr_lut_data_device[index]
 #else
@@ -195,9 +195,9 @@ namespace openpbr {
 inline constexpr float openpbr_lut_data[OPENPBR_LUT_TOTAL_COUNT] = {
 #include "generated/openpbr_lut_values.inc"
 };
-}
-// Qualified: a host interop layer (OPENPBR_USE_CUSTOM_INTEROP) may put the BSDF in another
-// namespace; the shared table stays in openpbr.
+}  // namespace openpbr
+   // Qualified: a host interop layer (OPENPBR_USE_CUSTOM_INTEROP) may put the BSDF in another
+   // namespace; the shared table stays in openpbr.
 #define OPENPBR_LUT_FETCH(index) ::openpbr::openpbr_lut_data[index]
 #endif
 #elif defined(OPENPBR_LUT_MODE_BUFFER) && OPENPBR_LUT_16BIT
@@ -206,20 +206,22 @@ inline constexpr float openpbr_lut_data[OPENPBR_LUT_TOTAL_COUNT] = {
 // bandwidth of float32, at a rounding error of at most 2^-11 relative (the accuracy study
 // measures what that does to the albedos).
 #if defined(OPENPBR_LANGUAGE_TARGET_SLANG)
-[[vk::binding(OPENPBR_LUT_BINDING, 0)]] StructuredBuffer<uint> openpbr_lut_data : register(OPENPBR_CONCATENATE(t, OPENPBR_LUT_BINDING));
-#define OPENPBR_LUT_FETCH(index) f16tof32(openpbr_lut_data[(index) >> 1] >> (((index) & 1) * 16))
+[[vk::binding(OPENPBR_LUT_BINDING, 0)]] StructuredBuffer<uint> openpbr_lut_data
+    : register(OPENPBR_CONCATENATE(t, OPENPBR_LUT_BINDING));
+#define OPENPBR_LUT_FETCH(index) f16tof32(openpbr_lut_data[(index) >> 1] >> (((index)&1) * 16))
 #elif defined(OPENPBR_LANGUAGE_TARGET_HLSL)
-StructuredBuffer<uint> openpbr_lut_data : register(OPENPBR_CONCATENATE(t, OPENPBR_LUT_BINDING), OPENPBR_CONCATENATE(space, OPENPBR_HLSL_REGISTER_SPACE));
-#define OPENPBR_LUT_FETCH(index) f16tof32(openpbr_lut_data[(index) >> 1] >> (((index) & 1) * 16))
+StructuredBuffer<uint> openpbr_lut_data
+    : register(OPENPBR_CONCATENATE(t, OPENPBR_LUT_BINDING), OPENPBR_CONCATENATE(space, OPENPBR_HLSL_REGISTER_SPACE));
+#define OPENPBR_LUT_FETCH(index) f16tof32(openpbr_lut_data[(index) >> 1] >> (((index)&1) * 16))
 #elif defined(OPENPBR_LANGUAGE_TARGET_GLSL)
 layout(std430, set = 0, binding = OPENPBR_LUT_BINDING) readonly buffer OpenPBR_LutBuffer { uint openpbr_lut_data[]; };
-#define OPENPBR_LUT_FETCH(index) (unpackHalf2x16(openpbr_lut_data[(index) >> 1])[(index) & 1])
+#define OPENPBR_LUT_FETCH(index) (unpackHalf2x16(openpbr_lut_data[(index) >> 1])[(index)&1])
 #elif defined(OPENPBR_LANGUAGE_TARGET_CPP)
 #include <glm/gtc/packing.hpp>
 namespace openpbr {
 // Set by the application before any prepare/eval: the halves, one per entry.
 inline const std::uint16_t* openpbr_lut_data_half = nullptr;
-}
+}  // namespace openpbr
 #define OPENPBR_LUT_FETCH(index) glm::unpackHalf1x16(::openpbr::openpbr_lut_data_half[index])
 #else
 #error "OPENPBR_LUT_16BIT is not available for this language"
@@ -228,16 +230,18 @@ inline const std::uint16_t* openpbr_lut_data_half = nullptr;
 #if defined(OPENPBR_LANGUAGE_TARGET_SLANG)
 // The explicit register keeps Slang's HLSL output in step with the Vulkan binding
 // (HLSL front ends then map t<N> to binding N).
-[[vk::binding(OPENPBR_LUT_BINDING, 0)]] StructuredBuffer<float> openpbr_lut_data : register(OPENPBR_CONCATENATE(t, OPENPBR_LUT_BINDING));
+[[vk::binding(OPENPBR_LUT_BINDING, 0)]] StructuredBuffer<float> openpbr_lut_data
+    : register(OPENPBR_CONCATENATE(t, OPENPBR_LUT_BINDING));
 #elif defined(OPENPBR_LANGUAGE_TARGET_HLSL)
-StructuredBuffer<float> openpbr_lut_data : register(OPENPBR_CONCATENATE(t, OPENPBR_LUT_BINDING), OPENPBR_CONCATENATE(space, OPENPBR_HLSL_REGISTER_SPACE));
+StructuredBuffer<float> openpbr_lut_data
+    : register(OPENPBR_CONCATENATE(t, OPENPBR_LUT_BINDING), OPENPBR_CONCATENATE(space, OPENPBR_HLSL_REGISTER_SPACE));
 #elif defined(OPENPBR_LANGUAGE_TARGET_GLSL)
 layout(std430, set = 0, binding = OPENPBR_LUT_BINDING) readonly buffer OpenPBR_LutBuffer { float openpbr_lut_data[]; };
 #elif defined(OPENPBR_LANGUAGE_TARGET_CPP)
 namespace openpbr {
 // Set by the application before any prepare/eval, e.g. to the contents of openpbr_lut.bin.
 inline const float* openpbr_lut_data = nullptr;
-}
+}  // namespace openpbr
 #else
 #error "OPENPBR_LUT_MODE_BUFFER is not available for this language; use OPENPBR_LUT_MODE_ARRAY"
 #endif
@@ -264,10 +268,9 @@ inline const float* openpbr_lut_data = nullptr;
 #if OPENPBR_LUT_FILTERED_2D
 #if defined(OPENPBR_LANGUAGE_TARGET_SLANG)
 [[vk::binding(OPENPBR_LUT_TEXTURE_BINDING, 0)]] Sampler2D<float> openpbr_lut_texture_2d;
-#define OPENPBR_LUT_SAMPLE_2D(fx, fy)                                                     \
-    openpbr_lut_texture_2d.SampleLevel(float2(((fx) + 0.5f) / float(OPENPBR_LUT_2D_SIZE), \
-                                              ((fy) + 0.5f) / float(OPENPBR_LUT_2D_SIZE)), \
-                                       0.0f)
+#define OPENPBR_LUT_SAMPLE_2D(fx, fy)   \
+    openpbr_lut_texture_2d.SampleLevel( \
+        float2(((fx) + 0.5f) / float(OPENPBR_LUT_2D_SIZE), ((fy) + 0.5f) / float(OPENPBR_LUT_2D_SIZE)), 0.0f)
 #else
 #error "OPENPBR_LUT_FILTERED_2D is available for Slang (Vulkan) only"
 #endif
@@ -304,16 +307,18 @@ OPENPBR_FUNC float openpbr_lut_eta_node(float eta)
     // (not "linear": an HLSL keyword)
     const float slope = OPENPBR_LUT_ETA_LINEAR_WEIGHT;
     const float first = openpbr_lut_asinh(1.0f) + slope * knee;
-    const float w = clamp((openpbr_lut_asinh(s / knee) + slope * s - first) /
-                              (openpbr_lut_asinh(1.0f / knee) + slope - first),
-                          0.0f, 1.0f);
+    const float w = clamp(
+        (openpbr_lut_asinh(s / knee) + slope * s - first) / (openpbr_lut_asinh(1.0f / knee) + slope - first), 0.0f, 1.0f);
     const int half_size = OPENPBR_LUT_3D_ETA_SIZE / 2;
     const float span = float(half_size - 1);
     return eta < 1.0f ? (1.0f - w) * span : float(half_size) + w * span;
 }
 OPENPBR_FUNC float openpbr_lut_roughness_coordinate(float alpha) { return clamp(sqrt(alpha), 0.0f, 1.0f); }
 OPENPBR_FUNC float openpbr_lut_mu_coordinate(float mu) { return sqrt(clamp(mu, 0.0f, 1.0f)); }
-OPENPBR_FUNC float openpbr_lut_anisotropy_coordinate(float anisotropy) { return 1.0f - sqrt(1.0f - clamp(anisotropy, 0.0f, 1.0f)); }
+OPENPBR_FUNC float openpbr_lut_anisotropy_coordinate(float anisotropy)
+{
+    return 1.0f - sqrt(1.0f - clamp(anisotropy, 0.0f, 1.0f));
+}
 
 // Azimuth coordinate of a view at cosine mu with squared azimuth cosine cos_phi_squared (phi
 // from the tangent) over the lobe of roughness r and anisotropy a (openpbr_ggx_alpha):
@@ -391,7 +396,7 @@ OPENPBR_FUNC int openpbr_lut_texture_id_3d(int offset)
     return offset == OPENPBR_LUT_DIELECTRIC_REFLECTION_OFFSET
                ? OPENPBR_LUT_TEXTURE_DIELECTRIC_REFLECTION
                : (offset == OPENPBR_LUT_DIELECTRIC_TRANSMISSION_OFFSET ? OPENPBR_LUT_TEXTURE_DIELECTRIC_TRANSMISSION
-                                                                        : OPENPBR_LUT_TEXTURE_DIELECTRIC_INTERFACE);
+                                                                       : OPENPBR_LUT_TEXTURE_DIELECTRIC_INTERFACE);
 }
 
 // The filtered value of 3D table `offset` at node coordinates (fx, fy, fz).
@@ -479,9 +484,9 @@ OPENPBR_FUNC float openpbr_lut_3d(int offset, float mu, float alpha, float eta)
     {
         return openpbr_lut_3d_along_eta(offset, x0, y0, tx, ty, fz);
     }
-    return max(openpbr_lut_3d_along_eta(offset, x0, y0, 0.0f, ty, fz), openpbr_lut_3d_along_eta(offset, x0, y0, 1.0f, ty, fz));
+    return max(openpbr_lut_3d_along_eta(offset, x0, y0, 0.0f, ty, fz),
+               openpbr_lut_3d_along_eta(offset, x0, y0, 1.0f, ty, fz));
 }
-
 
 #if !OPENPBR_USE_TEXTURE_LUTS
 // Trilinear blend of the 2 x 2 x 2 nodes from base with strides 1, stride_y and stride_z.
@@ -527,8 +532,8 @@ OPENPBR_FUNC float openpbr_lut_4d(int offset, float mu, float r, float a, float 
     OPENPBR_UNUSED(z0);
     const vec2 uv = (vec2(fx, fy) + vec2(0.5f)) / float(n);
     const float depth = float(m * m);
-    const float near_phi = OPENPBR_SAMPLE_3D_TEXTURE(OPENPBR_LUT_TEXTURE_GGX_ANISOTROPY_RATIO,
-                                                     vec3(uv, (float(w0 * m) + fz + 0.5f) / depth));
+    const float near_phi =
+        OPENPBR_SAMPLE_3D_TEXTURE(OPENPBR_LUT_TEXTURE_GGX_ANISOTROPY_RATIO, vec3(uv, (float(w0 * m) + fz + 0.5f) / depth));
     const float far_phi = OPENPBR_SAMPLE_3D_TEXTURE(OPENPBR_LUT_TEXTURE_GGX_ANISOTROPY_RATIO,
                                                     vec3(uv, (float((w0 + 1) * m) + fz + 0.5f) / depth));
 #else
@@ -550,7 +555,8 @@ OPENPBR_FUNC float openpbr_ggx_albedo_fit(float mu, float alpha)
 {
     const float m = openpbr_lut_mu_coordinate(mu);
     const float r = openpbr_lut_roughness_coordinate(alpha);
-    const float m0 = 9.8593036e-01f + r * (-3.2435618e-01f + r * (1.4709299e+00f + r * (-1.7097017e+00f + r * 5.6800775e-01f)));
+    const float m0 =
+        9.8593036e-01f + r * (-3.2435618e-01f + r * (1.4709299e+00f + r * (-1.7097017e+00f + r * 5.6800775e-01f)));
     const float m1 = -3.2264028e-02f + r * (-5.9167797e-01f + r * (-9.1125256e-01f + r * 1.1548465e+00f));
     const float m2 = 1.7432353e-01f + r * (3.4434184e-01f + r * -1.9105729e+00f);
     const float m3 = 2.3961913e-01f + r * 1.2671594e+00f;

@@ -9,8 +9,9 @@
 // textures, or a switch), e.g. in GLSL
 //   layout(set = 0, binding = 6) uniform sampler2D openpbr_tables_2d[4];
 //   layout(set = 0, binding = 7) uniform sampler3D openpbr_tables_3d[4];
-//   #define OPENPBR_SAMPLE_2D_TEXTURE(lut_id, uv) textureLod(openpbr_tables_2d[OPENPBR_LUT_TEXTURE_SLOT(lut_id)], uv, 0.0f).x
-//   #define OPENPBR_SAMPLE_3D_TEXTURE(lut_id, uvw) textureLod(openpbr_tables_3d[OPENPBR_LUT_TEXTURE_SLOT(lut_id)], uvw, 0.0f).x
+//   #define OPENPBR_SAMPLE_2D_TEXTURE(lut_id, uv) textureLod(openpbr_tables_2d[OPENPBR_LUT_TEXTURE_SLOT(lut_id)], uv,
+//   0.0f).x #define OPENPBR_SAMPLE_3D_TEXTURE(lut_id, uvw) textureLod(openpbr_tables_3d[OPENPBR_LUT_TEXTURE_SLOT(lut_id)],
+//   uvw, 0.0f).x
 //
 // How to fill each texture. All tables: one channel, 32-bit float (VK_FORMAT_R32_SFLOAT,
 // DXGI_FORMAT_R32_FLOAT, MTLPixelFormatR32Float; 16-bit float works at the 16-bit buffer
@@ -29,14 +30,15 @@
 // on many GPUs; docs/accuracy-vs-time.md "Texture tables").
 //
 //   id                                         dim  size (x, y, z)    axes (x, y, z)            flat offset
-//   OPENPBR_LUT_TEXTURE_GGX_ALBEDO          0   2D  32 x 32           c_mu, c_r                 OPENPBR_LUT_GGX_ALBEDO_OFFSET
-//   OPENPBR_LUT_TEXTURE_DIELECTRIC_REFLECTION 1 3D  33 x 33 x 48      u_mu, c_r, c_eta          OPENPBR_LUT_DIELECTRIC_REFLECTION_OFFSET
-//   OPENPBR_LUT_TEXTURE_DIELECTRIC_TRANSMISSION 2 3D 33 x 33 x 48     u_mu, c_r, c_eta          OPENPBR_LUT_DIELECTRIC_TRANSMISSION_OFFSET
-//   OPENPBR_LUT_TEXTURE_DIELECTRIC_INTERFACE 3  3D  33 x 33 x 48      u_mu, c_r, c_eta          OPENPBR_LUT_DIELECTRIC_INTERFACE_OFFSET
-//   OPENPBR_LUT_TEXTURE_GGX_ANISOTROPY_RATIO 4  3D  16 x 16 x 100     c_mu, c_r, 10 c_phi + c_a OPENPBR_LUT_GGX_ANISOTROPY_RATIO_OFFSET
-//   OPENPBR_LUT_TEXTURE_FUZZ_LTC_A          5   2D  32 x 32           mu, fuzz roughness        OPENPBR_FUZZ_LTC_A_OFFSET (fuzz table)
-//   OPENPBR_LUT_TEXTURE_FUZZ_LTC_B          6   2D  32 x 32           mu, fuzz roughness        OPENPBR_FUZZ_LTC_B_OFFSET (fuzz table)
-//   OPENPBR_LUT_TEXTURE_FUZZ_LTC_R          7   2D  32 x 32           mu, fuzz roughness        OPENPBR_FUZZ_LTC_R_OFFSET (fuzz table)
+//   OPENPBR_LUT_TEXTURE_GGX_ALBEDO          0   2D  32 x 32           c_mu, c_r OPENPBR_LUT_GGX_ALBEDO_OFFSET
+//   OPENPBR_LUT_TEXTURE_DIELECTRIC_REFLECTION 1 3D  33 x 33 x 48      u_mu, c_r, c_eta
+//   OPENPBR_LUT_DIELECTRIC_REFLECTION_OFFSET OPENPBR_LUT_TEXTURE_DIELECTRIC_TRANSMISSION 2 3D 33 x 33 x 48     u_mu, c_r,
+//   c_eta          OPENPBR_LUT_DIELECTRIC_TRANSMISSION_OFFSET OPENPBR_LUT_TEXTURE_DIELECTRIC_INTERFACE 3  3D  33 x 33 x 48
+//   u_mu, c_r, c_eta          OPENPBR_LUT_DIELECTRIC_INTERFACE_OFFSET OPENPBR_LUT_TEXTURE_GGX_ANISOTROPY_RATIO 4  3D  16 x
+//   16 x 100     c_mu, c_r, 10 c_phi + c_a OPENPBR_LUT_GGX_ANISOTROPY_RATIO_OFFSET OPENPBR_LUT_TEXTURE_FUZZ_LTC_A          5
+//   2D  32 x 32           mu, fuzz roughness        OPENPBR_FUZZ_LTC_A_OFFSET (fuzz table) OPENPBR_LUT_TEXTURE_FUZZ_LTC_B 6
+//   2D  32 x 32           mu, fuzz roughness        OPENPBR_FUZZ_LTC_B_OFFSET (fuzz table) OPENPBR_LUT_TEXTURE_FUZZ_LTC_R 7
+//   2D  32 x 32           mu, fuzz roughness        OPENPBR_FUZZ_LTC_R_OFFSET (fuzz table)
 // The anisotropy table is 4D (mu, r, a, phi): its 10 azimuth slabs of 16 x 16 x 10 are stacked
 // along z (z = phi node x 10 + anisotropy node); the library filters within a slab (trilinear
 // over mu, r, a) and blends the two azimuth slabs itself, so filtering never mixes slabs.
@@ -46,7 +48,8 @@
 // linearly. By default the library therefore samples each 3D table at exact eta-node centres
 // (each fetch is a bilinear filter within one eta slice) and keeps its own interpolation along
 // eta: 3 fetches per look-up, 6 where the view is in the first mu cell.
-// OPENPBR_LUT_TEXTURE_TRILINEAR_ETA=1 uses one trilinear fetch instead: cheaper, at the accuracy cost measured in docs/accuracy-vs-time.md.
+// OPENPBR_LUT_TEXTURE_TRILINEAR_ETA=1 uses one trilinear fetch instead: cheaper, at the accuracy cost measured in
+// docs/accuracy-vs-time.md.
 #ifndef OPENPBR_LUT_TEXTURES_H
 #define OPENPBR_LUT_TEXTURES_H
 
@@ -71,7 +74,7 @@
 #define OPENPBR_LUT_TEXTURE_COUNT 8
 // Index of a table among the host's textures of its dimension, e.g. for two arrays
 // sampler2D[4] (ids 0, 5, 6, 7) and sampler3D[4] (ids 1-4): 0, 0, 1, 2, 3, 1, 2, 3.
-#define OPENPBR_LUT_TEXTURE_SLOT(lut_id) ((lut_id) == 0 ? 0 : ((lut_id) <= 4 ? (lut_id) - 1 : (lut_id) - 4))
+#define OPENPBR_LUT_TEXTURE_SLOT(lut_id) ((lut_id) == 0 ? 0 : ((lut_id) <= 4 ? (lut_id)-1 : (lut_id)-4))
 
 // Declarations the library can make itself (OPENPBR_LUT_TEXTURES_DECLARE=1, Slang, GLSL and
 // HLSL; default 0: the host declares its textures and defines the two macros): table id k at
@@ -119,9 +122,9 @@ OPENPBR_LUT_TEXTURE_DECLARE(7, Sampler2D)
 #define OPENPBR_SAMPLE_2D_TEXTURE(lut_id, uv) OPENPBR_LUT_TEXTURE_NAME(lut_id).SampleLevel(uv, 0.0f)
 #define OPENPBR_SAMPLE_3D_TEXTURE(lut_id, uvw) OPENPBR_LUT_TEXTURE_NAME(lut_id).SampleLevel(uvw, 0.0f)
 #elif defined(OPENPBR_LANGUAGE_TARGET_HLSL)
-#define OPENPBR_LUT_TEXTURE_DECLARE(number, kind)                                                           \
-    kind<float> openpbr_lut_texture_##number                                                                \
-        : register(OPENPBR_CONCATENATE(t, OPENPBR_LUT_TEXTURES_REGISTER_##number), OPENPBR_CONCATENATE(space, OPENPBR_HLSL_REGISTER_SPACE));
+#define OPENPBR_LUT_TEXTURE_DECLARE(number, kind)                                                                       \
+    kind<float> openpbr_lut_texture_##number : register(OPENPBR_CONCATENATE(t, OPENPBR_LUT_TEXTURES_REGISTER_##number), \
+                                                        OPENPBR_CONCATENATE(space, OPENPBR_HLSL_REGISTER_SPACE));
 // Registers t6 ... t13 for the default first binding 6 (HLSL registers are literal tokens).
 #define OPENPBR_LUT_TEXTURES_REGISTER_0 6
 #define OPENPBR_LUT_TEXTURES_REGISTER_1 7
@@ -149,7 +152,8 @@ SamplerState openpbr_lut_sampler : register(s0, OPENPBR_CONCATENATE(space, OPENP
 
 #if OPENPBR_USE_TEXTURE_LUTS
 #if !defined(OPENPBR_SAMPLE_2D_TEXTURE) || !defined(OPENPBR_SAMPLE_3D_TEXTURE)
-#error "OPENPBR_USE_TEXTURE_LUTS=1: define OPENPBR_SAMPLE_2D_TEXTURE(lut_id, uv) and OPENPBR_SAMPLE_3D_TEXTURE(lut_id, uvw) before including openpbr.h (slang/openpbr_lut_textures.h says how to fill the textures)"
+#error \
+    "OPENPBR_USE_TEXTURE_LUTS=1: define OPENPBR_SAMPLE_2D_TEXTURE(lut_id, uv) and OPENPBR_SAMPLE_3D_TEXTURE(lut_id, uvw) before including openpbr.h (slang/openpbr_lut_textures.h says how to fill the textures)"
 #endif
 #if defined(OPENPBR_LUT_MODE_ARRAY) || defined(OPENPBR_LUT_MODE_BUFFER)
 #error "OPENPBR_USE_TEXTURE_LUTS=1 replaces the array and buffer modes: define no OPENPBR_LUT_MODE_*"

@@ -22,15 +22,20 @@
 
 OPENPBR_NAMESPACE_BEGIN
 
-#define OPENPBR_UNPACK_VEC3(name)                                                                        \
-    material.name = vec3(OPENPBR_MATERIAL_READ(index), OPENPBR_MATERIAL_READ(index + 1u),                \
-                         OPENPBR_MATERIAL_READ(index + 2u));                                             \
+#define OPENPBR_UNPACK_VEC3(name)                                                                                 \
+    material.name =                                                                                               \
+        vec3(OPENPBR_MATERIAL_READ(index), OPENPBR_MATERIAL_READ(index + 1u), OPENPBR_MATERIAL_READ(index + 2u)); \
     index += 3u;
-#define OPENPBR_UNPACK_FLOAT(name, default_value, low, high) material.name = OPENPBR_MATERIAL_READ(index); index += 1u;
+#define OPENPBR_UNPACK_FLOAT(name, default_value, low, high) \
+    material.name = OPENPBR_MATERIAL_READ(index);            \
+    index += 1u;
 #define OPENPBR_UNPACK_COLOR(name, default_r, default_g, default_b, low, high) OPENPBR_UNPACK_VEC3(name)
-#define OPENPBR_UNPACK_VECTOR2(name, default_x, default_y) \
-    material.name = vec2(OPENPBR_MATERIAL_READ(index), OPENPBR_MATERIAL_READ(index + 1u)); index += 2u;
-#define OPENPBR_UNPACK_BOOL(name, default_value) material.name = OPENPBR_MATERIAL_READ(index) != 0.0f; index += 1u;
+#define OPENPBR_UNPACK_VECTOR2(name, default_x, default_y)                                 \
+    material.name = vec2(OPENPBR_MATERIAL_READ(index), OPENPBR_MATERIAL_READ(index + 1u)); \
+    index += 2u;
+#define OPENPBR_UNPACK_BOOL(name, default_value)          \
+    material.name = OPENPBR_MATERIAL_READ(index) != 0.0f; \
+    index += 1u;
 #define OPENPBR_UNPACK_BASIS(name, normal_input, tangent_input) \
     OPENPBR_UNPACK_VEC3(name.tangent) OPENPBR_UNPACK_VEC3(name.bitangent) OPENPBR_UNPACK_VEC3(name.normal)
 

@@ -54,57 +54,57 @@
 // The MaterialX input name of a FLOAT, COLOR or BOOL is its field name. Units: lengths in
 // scene units, thin_film_thickness in micrometers, emission_luminance in nits (cd/m^2).
 // Comments inside the macro are block comments: a line comment would swallow the next line.
-#define OPENPBR_PARAMETERS(FLOAT, COLOR, VECTOR2, BOOL, BASIS)                                            \
-    /* Base (spec "Base Substrate"); base_diffuse_roughness is the EON sigma, 0 = Lambert */           \
-    FLOAT(base_weight, 1.0f, 0.0f, 1.0f)                                                              \
-    COLOR(base_color, 0.8f, 0.8f, 0.8f, 0.0f, 1.0f)                                                   \
-    FLOAT(base_diffuse_roughness, 0.0f, 0.0f, 1.0f)                                                   \
-    FLOAT(base_metalness, 0.0f, 0.0f, 1.0f)                                                           \
-    /* Specular (dielectric and metal reflection) */                                                  \
-    FLOAT(specular_weight, 1.0f, 0.0f, OPENPBR_SPECULAR_WEIGHT_MAX)                                   \
-    COLOR(specular_color, 1.0f, 1.0f, 1.0f, 0.0f, 1.0f)                                               \
-    FLOAT(specular_roughness, 0.3f, 0.0f, 1.0f)                                                       \
-    FLOAT(specular_roughness_anisotropy, 0.0f, 0.0f, 1.0f)                                            \
-    FLOAT(specular_ior, 1.5f, OPENPBR_IOR_MIN, OPENPBR_IOR_MAX)                                       \
-    /* Transmission (translucent base); depth 0 means no medium */                                    \
-    FLOAT(transmission_weight, 0.0f, 0.0f, 1.0f)                                                      \
-    COLOR(transmission_color, 1.0f, 1.0f, 1.0f, 0.0f, 1.0f)                                           \
-    FLOAT(transmission_depth, 0.0f, 0.0f, OPENPBR_LENGTH_MAX)                                         \
-    COLOR(transmission_scatter, 0.0f, 0.0f, 0.0f, 0.0f, 1.0f)                                         \
-    FLOAT(transmission_scatter_anisotropy, 0.0f, -1.0f, 1.0f)                                         \
-    FLOAT(transmission_dispersion_scale, 0.0f, 0.0f, 1.0f)                                            \
-    FLOAT(transmission_dispersion_abbe_number, 20.0f, OPENPBR_ABBE_MIN, OPENPBR_ABBE_MAX)             \
-    /* Subsurface */                                                                                  \
-    FLOAT(subsurface_weight, 0.0f, 0.0f, 1.0f)                                                        \
-    COLOR(subsurface_color, 0.8f, 0.8f, 0.8f, 0.0f, 1.0f)                                             \
-    FLOAT(subsurface_radius, 1.0f, 0.0f, OPENPBR_LENGTH_MAX)                                          \
-    COLOR(subsurface_radius_scale, 1.0f, 0.5f, 0.25f, 0.0f, 1.0f)                                     \
-    FLOAT(subsurface_scatter_anisotropy, 0.0f, -1.0f, 1.0f)                                           \
-    /* Fuzz */                                                                                        \
-    FLOAT(fuzz_weight, 0.0f, 0.0f, 1.0f)                                                              \
-    COLOR(fuzz_color, 1.0f, 1.0f, 1.0f, 0.0f, 1.0f)                                                   \
-    FLOAT(fuzz_roughness, 0.5f, 0.0f, 1.0f)                                                           \
-    /* Coat */                                                                                        \
-    FLOAT(coat_weight, 0.0f, 0.0f, 1.0f)                                                              \
-    COLOR(coat_color, 1.0f, 1.0f, 1.0f, 0.0f, 1.0f)                                                   \
-    FLOAT(coat_roughness, 0.0f, 0.0f, 1.0f)                                                           \
-    FLOAT(coat_roughness_anisotropy, 0.0f, 0.0f, 1.0f)                                                \
-    FLOAT(coat_ior, 1.6f, OPENPBR_IOR_MIN, OPENPBR_IOR_MAX)                                           \
-    FLOAT(coat_darkening, 1.0f, 0.0f, 1.0f)                                                           \
-    /* Thin film; thickness in micrometers */                                                         \
-    FLOAT(thin_film_weight, 0.0f, 0.0f, 1.0f)                                                         \
-    FLOAT(thin_film_thickness, 0.5f, 0.0f, OPENPBR_LENGTH_MAX)                                        \
-    FLOAT(thin_film_ior, 1.4f, OPENPBR_IOR_MIN, OPENPBR_IOR_MAX)                                      \
-    /* Emission; luminance in nits */                                                                 \
-    FLOAT(emission_luminance, 0.0f, 0.0f, OPENPBR_LUMINANCE_MAX)                                      \
-    COLOR(emission_color, 1.0f, 1.0f, 1.0f, 0.0f, 1.0f)                                               \
-    /* Geometry */                                                                                    \
-    FLOAT(geometry_opacity, 1.0f, 0.0f, 1.0f)                                                         \
-    BOOL(geometry_thin_walled, false)                                                                 \
-    BASIS(geometry_basis, geometry_normal, geometry_tangent)                                          \
-    BASIS(geometry_coat_basis, geometry_coat_normal, geometry_coat_tangent)                           \
-    /* Extensions: rotation of the anisotropy direction about the normal */                           \
-    VECTOR2(specular_anisotropy_rotation, 1.0f, 0.0f)                                                 \
+#define OPENPBR_PARAMETERS(FLOAT, COLOR, VECTOR2, BOOL, BASIS)                               \
+    /* Base (spec "Base Substrate"); base_diffuse_roughness is the EON sigma, 0 = Lambert */ \
+    FLOAT(base_weight, 1.0f, 0.0f, 1.0f)                                                     \
+    COLOR(base_color, 0.8f, 0.8f, 0.8f, 0.0f, 1.0f)                                          \
+    FLOAT(base_diffuse_roughness, 0.0f, 0.0f, 1.0f)                                          \
+    FLOAT(base_metalness, 0.0f, 0.0f, 1.0f)                                                  \
+    /* Specular (dielectric and metal reflection) */                                         \
+    FLOAT(specular_weight, 1.0f, 0.0f, OPENPBR_SPECULAR_WEIGHT_MAX)                          \
+    COLOR(specular_color, 1.0f, 1.0f, 1.0f, 0.0f, 1.0f)                                      \
+    FLOAT(specular_roughness, 0.3f, 0.0f, 1.0f)                                              \
+    FLOAT(specular_roughness_anisotropy, 0.0f, 0.0f, 1.0f)                                   \
+    FLOAT(specular_ior, 1.5f, OPENPBR_IOR_MIN, OPENPBR_IOR_MAX)                              \
+    /* Transmission (translucent base); depth 0 means no medium */                           \
+    FLOAT(transmission_weight, 0.0f, 0.0f, 1.0f)                                             \
+    COLOR(transmission_color, 1.0f, 1.0f, 1.0f, 0.0f, 1.0f)                                  \
+    FLOAT(transmission_depth, 0.0f, 0.0f, OPENPBR_LENGTH_MAX)                                \
+    COLOR(transmission_scatter, 0.0f, 0.0f, 0.0f, 0.0f, 1.0f)                                \
+    FLOAT(transmission_scatter_anisotropy, 0.0f, -1.0f, 1.0f)                                \
+    FLOAT(transmission_dispersion_scale, 0.0f, 0.0f, 1.0f)                                   \
+    FLOAT(transmission_dispersion_abbe_number, 20.0f, OPENPBR_ABBE_MIN, OPENPBR_ABBE_MAX)    \
+    /* Subsurface */                                                                         \
+    FLOAT(subsurface_weight, 0.0f, 0.0f, 1.0f)                                               \
+    COLOR(subsurface_color, 0.8f, 0.8f, 0.8f, 0.0f, 1.0f)                                    \
+    FLOAT(subsurface_radius, 1.0f, 0.0f, OPENPBR_LENGTH_MAX)                                 \
+    COLOR(subsurface_radius_scale, 1.0f, 0.5f, 0.25f, 0.0f, 1.0f)                            \
+    FLOAT(subsurface_scatter_anisotropy, 0.0f, -1.0f, 1.0f)                                  \
+    /* Fuzz */                                                                               \
+    FLOAT(fuzz_weight, 0.0f, 0.0f, 1.0f)                                                     \
+    COLOR(fuzz_color, 1.0f, 1.0f, 1.0f, 0.0f, 1.0f)                                          \
+    FLOAT(fuzz_roughness, 0.5f, 0.0f, 1.0f)                                                  \
+    /* Coat */                                                                               \
+    FLOAT(coat_weight, 0.0f, 0.0f, 1.0f)                                                     \
+    COLOR(coat_color, 1.0f, 1.0f, 1.0f, 0.0f, 1.0f)                                          \
+    FLOAT(coat_roughness, 0.0f, 0.0f, 1.0f)                                                  \
+    FLOAT(coat_roughness_anisotropy, 0.0f, 0.0f, 1.0f)                                       \
+    FLOAT(coat_ior, 1.6f, OPENPBR_IOR_MIN, OPENPBR_IOR_MAX)                                  \
+    FLOAT(coat_darkening, 1.0f, 0.0f, 1.0f)                                                  \
+    /* Thin film; thickness in micrometers */                                                \
+    FLOAT(thin_film_weight, 0.0f, 0.0f, 1.0f)                                                \
+    FLOAT(thin_film_thickness, 0.5f, 0.0f, OPENPBR_LENGTH_MAX)                               \
+    FLOAT(thin_film_ior, 1.4f, OPENPBR_IOR_MIN, OPENPBR_IOR_MAX)                             \
+    /* Emission; luminance in nits */                                                        \
+    FLOAT(emission_luminance, 0.0f, 0.0f, OPENPBR_LUMINANCE_MAX)                             \
+    COLOR(emission_color, 1.0f, 1.0f, 1.0f, 0.0f, 1.0f)                                      \
+    /* Geometry */                                                                           \
+    FLOAT(geometry_opacity, 1.0f, 0.0f, 1.0f)                                                \
+    BOOL(geometry_thin_walled, false)                                                        \
+    BASIS(geometry_basis, geometry_normal, geometry_tangent)                                 \
+    BASIS(geometry_coat_basis, geometry_coat_normal, geometry_coat_tangent)                  \
+    /* Extensions: rotation of the anisotropy direction about the normal */                  \
+    VECTOR2(specular_anisotropy_rotation, 1.0f, 0.0f)                                        \
     VECTOR2(coat_anisotropy_rotation, 1.0f, 0.0f)
 
 #endif

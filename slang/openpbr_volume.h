@@ -64,9 +64,8 @@ OPENPBR_FUNC float openpbr_henyey_greenstein_eval(float g, float cos_theta)
     const float cosine = openpbr_clamp_finite(cos_theta, -1.0f, 1.0f);
     // 1 + g^2 - 2 g cos written as a sum of two non-negative terms, so rounding cannot make it
     // smaller than (1 - |g|)^2 >= 1e-6 near the peak (the plain form cancels there).
-    const float denominator = anisotropy >= 0.0f
-                                  ? openpbr_square(1.0f - anisotropy) + 2.0f * anisotropy * (1.0f - cosine)
-                                  : openpbr_square(1.0f + anisotropy) - 2.0f * anisotropy * (1.0f + cosine);
+    const float denominator = anisotropy >= 0.0f ? openpbr_square(1.0f - anisotropy) + 2.0f * anisotropy * (1.0f - cosine)
+                                                 : openpbr_square(1.0f + anisotropy) - 2.0f * anisotropy * (1.0f + cosine);
     return OPENPBR_INV_FOUR_PI * (1.0f - anisotropy * anisotropy) / (denominator * sqrt(denominator));
 }
 
@@ -83,9 +82,9 @@ OPENPBR_FUNC float openpbr_henyey_greenstein_sample_cos_theta(float g, float u)
     const float signed_u = 2.0f * openpbr_clamp_finite(u, 0.0f, 1.0f) - 1.0f;
     const float denominator = 1.0f + anisotropy * signed_u;  // >= 1 - |anisotropy| > 0
     // Dividing (rather than multiplying by a reciprocal) makes a = +-1 give exactly +-1.
-    const float cos_theta = (signed_u + anisotropy) / denominator +
-                            0.5f * anisotropy * (1.0f - anisotropy * anisotropy) * (1.0f - signed_u * signed_u) /
-                                (denominator * denominator);
+    const float cos_theta = (signed_u + anisotropy) / denominator + 0.5f * anisotropy * (1.0f - anisotropy * anisotropy) *
+                                                                        (1.0f - signed_u * signed_u) /
+                                                                        (denominator * denominator);
     return clamp(cos_theta, -1.0f, 1.0f);
 }
 
@@ -167,8 +166,8 @@ OPENPBR_FUNC OpenPBR_HomogeneousVolume openpbr_make_empty_volume()
 // mu_a = mu_t - mu_s, shifted up by -min(mu_a) when negative (the spec's gray shift), and the
 // final extinction is mu_a + mu_s. Depth 0 (or below the smallest normal float, which GPUs
 // flush to 0) is the spec's "no medium": all coefficients 0.
-OPENPBR_FUNC OpenPBR_HomogeneousVolume openpbr_make_translucent_volume(vec3 transmission_color, float depth,
-                                                                       vec3 scatter, float anisotropy)
+OPENPBR_FUNC OpenPBR_HomogeneousVolume openpbr_make_translucent_volume(vec3 transmission_color, float depth, vec3 scatter,
+                                                                       float anisotropy)
 {
     OpenPBR_HomogeneousVolume volume = openpbr_make_empty_volume();
     volume.anisotropy = openpbr_henyey_greenstein_clamp_anisotropy(anisotropy);
@@ -207,8 +206,8 @@ OPENPBR_FUNC OpenPBR_HomogeneousVolume openpbr_make_subsurface_volume(vec3 color
 {
     OpenPBR_HomogeneousVolume volume;
     volume.anisotropy = openpbr_henyey_greenstein_clamp_anisotropy(anisotropy);
-    const vec3 mean_free_path = openpbr_clamp_finite(radius, 0.0f, OPENPBR_FLOAT_MAX) *
-                                openpbr_clamp_finite(radius_scale, 0.0f, 1.0f);
+    const vec3 mean_free_path =
+        openpbr_clamp_finite(radius, 0.0f, OPENPBR_FLOAT_MAX) * openpbr_clamp_finite(radius_scale, 0.0f, 1.0f);
     // max() with 1/cap both caps the extinction and keeps 1/r finite for r = 0 or denormal.
     volume.extinction = vec3(1.0f) / max(mean_free_path, vec3(1.0f / OPENPBR_VOLUME_EXTINCTION_MAX));
     volume.extinction = openpbr_clamp_finite(volume.extinction, 0.0f, OPENPBR_VOLUME_EXTINCTION_MAX);
@@ -244,11 +243,11 @@ OPENPBR_FUNC OpenPBR_HomogeneousVolume openpbr_make_volume(OPENPBR_IN(OpenPBR_Re
     const float subsurface_fraction = subsurface_share / total;
 
     const OpenPBR_HomogeneousVolume translucent =
-        openpbr_make_translucent_volume(inputs.transmission_color, inputs.transmission_depth,
-                                        inputs.transmission_scatter, inputs.transmission_scatter_anisotropy);
+        openpbr_make_translucent_volume(inputs.transmission_color, inputs.transmission_depth, inputs.transmission_scatter,
+                                        inputs.transmission_scatter_anisotropy);
     const OpenPBR_HomogeneousVolume subsurface_medium =
-        openpbr_make_subsurface_volume(inputs.subsurface_color, inputs.subsurface_radius,
-                                       inputs.subsurface_radius_scale, inputs.subsurface_scatter_anisotropy);
+        openpbr_make_subsurface_volume(inputs.subsurface_color, inputs.subsurface_radius, inputs.subsurface_radius_scale,
+                                       inputs.subsurface_scatter_anisotropy);
 
     // Each term is at most the cap, so the convex combinations stay below it.
     const vec3 translucent_scattering = translucent.extinction * translucent.albedo * translucent_fraction;
@@ -273,8 +272,7 @@ OPENPBR_FUNC OpenPBR_HomogeneousVolume openpbr_make_volume(OPENPBR_IN(OpenPBR_Re
         max(scattering_sum, OPENPBR_FLOAT_MIN_NORMAL);
     const float weighted_anisotropy =
         translucent_fraction * translucent.anisotropy + subsurface_fraction * subsurface_medium.anisotropy;
-    const float blended_anisotropy =
-        scattering_sum > OPENPBR_FLOAT_MIN_NORMAL ? scattered_anisotropy : weighted_anisotropy;
+    const float blended_anisotropy = scattering_sum > OPENPBR_FLOAT_MIN_NORMAL ? scattered_anisotropy : weighted_anisotropy;
     volume.anisotropy = openpbr_henyey_greenstein_clamp_anisotropy(blended_anisotropy);
     volume.is_present = openpbr_max3(volume.extinction) > OPENPBR_FLOAT_MIN_NORMAL;
     if (!volume.is_present)
@@ -321,9 +319,9 @@ OPENPBR_FUNC vec3 openpbr_volume_channel_probabilities(vec3 throughput)
     // Divide by the largest first so the sum cannot overflow; denormal shares are flushed to 0
     // (as GPUs do), so a drawn channel always has a normal probability.
     const vec3 scaled = nonnegative_throughput / largest;
-    const vec3 flushed = vec3(scaled.x > OPENPBR_FLOAT_MIN_NORMAL ? scaled.x : 0.0f,
-                              scaled.y > OPENPBR_FLOAT_MIN_NORMAL ? scaled.y : 0.0f,
-                              scaled.z > OPENPBR_FLOAT_MIN_NORMAL ? scaled.z : 0.0f);
+    const vec3 flushed =
+        vec3(scaled.x > OPENPBR_FLOAT_MIN_NORMAL ? scaled.x : 0.0f, scaled.y > OPENPBR_FLOAT_MIN_NORMAL ? scaled.y : 0.0f,
+             scaled.z > OPENPBR_FLOAT_MIN_NORMAL ? scaled.z : 0.0f);
     return flushed / (flushed.x + flushed.y + flushed.z);
 }
 
@@ -351,8 +349,7 @@ OPENPBR_FUNC float openpbr_volume_distance_pdf(OPENPBR_IN(OpenPBR_HomogeneousVol
 // the sigma factor. Evaluated as one exponential of a log so that neither factor over- or
 // underflows on its own (sigma_c d <= about 69 bounds the exponent from above; the clamp only
 // keeps a -inf away from exp). Channel c itself gives exactly 1.
-OPENPBR_FUNC float openpbr_volume_channel_ratio(float extinction_k, float extinction_c, float distance_value,
-                                                bool scattered)
+OPENPBR_FUNC float openpbr_volume_channel_ratio(float extinction_k, float extinction_c, float distance_value, bool scattered)
 {
     if (scattered && !(extinction_k > OPENPBR_FLOAT_MIN_NORMAL))
     {
@@ -427,7 +424,8 @@ OPENPBR_FUNC OpenPBR_VolumeDistanceSample openpbr_volume_sample_distance(OPENPBR
     // The weight divided through by the drawn channel's own density (or transmittance): the
     // denominator is then >= P(c) > 0, so the weight stays finite where the absolute pdf
     // underflows (e.g. a flight of optical depth 69 in a medium with sigma_t = 1e-18).
-    result.weight = openpbr_volume_flight_weight(volume, probabilities, extinction_channel, result.distance, result.scattered);
+    result.weight =
+        openpbr_volume_flight_weight(volume, probabilities, extinction_channel, result.distance, result.scattered);
     // The absolute pdf, for MIS with other distance samplers; it may underflow to 0 for
     // extremely long flights, where the weight above is still exact.
     result.pdf = openpbr_volume_distance_pdf(volume, throughput, result.distance, result.scattered);

@@ -41,16 +41,17 @@ int main(int argc, char** argv)
         const std::vector<float> queries = make_queries(1024, materials.size());
         const std::size_t query_count = queries.size() / query_floats;
 
-        std::vector<std::byte> lut = host::to_bytes(read_table(table_directory + "/openpbr_lut.bin", OPENPBR_LUT_TOTAL_COUNT));
+        std::vector<std::byte> lut =
+            host::to_bytes(read_table(table_directory + "/openpbr_lut.bin", OPENPBR_LUT_TOTAL_COUNT));
         std::vector<std::byte> fuzz_ltc =
             host::to_bytes(read_table(table_directory + "/openpbr_fuzz_ltc.bin", OPENPBR_FUZZ_LTC_TOTAL_COUNT));
         std::vector<std::byte> query_bytes = host::to_bytes(queries);
         std::vector<std::byte> material_bytes = host::to_bytes(pack_materials(materials));
         std::vector<std::byte> parameters = host::to_bytes(std::vector<std::uint32_t>{std::uint32_t(query_count), 0, 0, 0});
         std::vector<std::byte> result_bytes(query_count * result_floats * sizeof(float));
-        const std::vector<host::BufferBinding> buffers = {{0, &lut, false},           {1, &fuzz_ltc, false},
-                                                          {2, &query_bytes, false},   {3, &material_bytes, false},
-                                                          {4, &parameters, false},    {5, &result_bytes, true}};
+        const std::vector<host::BufferBinding> buffers = {{0, &lut, false},         {1, &fuzz_ltc, false},
+                                                          {2, &query_bytes, false}, {3, &material_bytes, false},
+                                                          {4, &parameters, false},  {5, &result_bytes, true}};
         host::ComputePipelineDescription description;
         description.spirv_words = host::load_spirv_file(kernel_path);
         description.entry_point = "main";
@@ -59,8 +60,8 @@ int main(int argc, char** argv)
         host::run(pipeline, buffers, std::uint32_t((query_count + 63) / 64));
 
         std::printf("%s on %s\n", name.c_str(), context->device_name().c_str());
-        const bool agree = compare_with_cpu(name.c_str(), host::from_bytes<float>(result_bytes),
-                                            shade_all_on_cpu(materials, queries));
+        const bool agree =
+            compare_with_cpu(name.c_str(), host::from_bytes<float>(result_bytes), shade_all_on_cpu(materials, queries));
         return agree ? 0 : 1;
     }
     catch (const std::exception& failure)

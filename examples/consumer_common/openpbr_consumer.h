@@ -92,12 +92,21 @@ inline std::vector<float> pack_materials(const std::vector<OpenPBR_ResolvedInput
         const OpenPBR_ResolvedInputs& material = materials[m];
         std::size_t index = m * OPENPBR_PACKED_MATERIAL_FLOATS;
         auto put = [&](float value) { packed[index++] = value; };
-        auto put3 = [&](const vec3& value) { put(value.x); put(value.y); put(value.z); };
+        auto put3 = [&](const vec3& value) {
+            put(value.x);
+            put(value.y);
+            put(value.z);
+        };
 #define CONSUMER_PACK_FLOAT(name, default_value, low, high) put(material.name);
 #define CONSUMER_PACK_COLOR(name, default_r, default_g, default_b, low, high) put3(material.name);
-#define CONSUMER_PACK_VECTOR2(name, default_x, default_y) put(material.name.x); put(material.name.y);
+#define CONSUMER_PACK_VECTOR2(name, default_x, default_y) \
+    put(material.name.x);                                 \
+    put(material.name.y);
 #define CONSUMER_PACK_BOOL(name, default_value) put(material.name ? 1.0f : 0.0f);
-#define CONSUMER_PACK_BASIS(name, normal_input, tangent_input) put3(material.name.tangent); put3(material.name.bitangent); put3(material.name.normal);
+#define CONSUMER_PACK_BASIS(name, normal_input, tangent_input) \
+    put3(material.name.tangent);                               \
+    put3(material.name.bitangent);                             \
+    put3(material.name.normal);
         OPENPBR_PARAMETERS(CONSUMER_PACK_FLOAT, CONSUMER_PACK_COLOR, CONSUMER_PACK_VECTOR2, CONSUMER_PACK_BOOL,
                            CONSUMER_PACK_BASIS)
 #undef CONSUMER_PACK_FLOAT
@@ -149,11 +158,22 @@ inline void shade_on_cpu(const std::vector<OpenPBR_ResolvedInputs>& materials, c
     const OpenPBR_DiffuseSpecular value = openpbr_eval(bsdf, light);
     const OpenPBR_BsdfSample bsdf_sample = openpbr_sample(bsdf, u);
     const vec3 weight = bsdf_sample.weight.diffuse + bsdf_sample.weight.specular;
-    const float values[result_floats] = {
-        value.diffuse.x, value.diffuse.y, value.diffuse.z, openpbr_pdf(bsdf, light),
-        value.specular.x, value.specular.y, value.specular.z, 0.0f,
-        bsdf_sample.direction.x, bsdf_sample.direction.y, bsdf_sample.direction.z, bsdf_sample.pdf,
-        weight.x, weight.y, weight.z, float(bsdf_sample.lobe_type)};
+    const float values[result_floats] = {value.diffuse.x,
+                                         value.diffuse.y,
+                                         value.diffuse.z,
+                                         openpbr_pdf(bsdf, light),
+                                         value.specular.x,
+                                         value.specular.y,
+                                         value.specular.z,
+                                         0.0f,
+                                         bsdf_sample.direction.x,
+                                         bsdf_sample.direction.y,
+                                         bsdf_sample.direction.z,
+                                         bsdf_sample.pdf,
+                                         weight.x,
+                                         weight.y,
+                                         weight.z,
+                                         float(bsdf_sample.lobe_type)};
     std::copy(values, values + result_floats, result);
 }
 
@@ -237,8 +257,8 @@ inline bool compare_with_cpu(const char* name, const std::vector<float>& gpu, co
         }
     }
     const double mismatch_fraction = query_count ? double(lobe_mismatches) / double(query_count) : 1.0;
-    const bool pass = query_count > 0 && nonfinite == 0 && worst <= max_relative_error &&
-                      mismatch_fraction <= max_lobe_mismatch_fraction;
+    const bool pass =
+        query_count > 0 && nonfinite == 0 && worst <= max_relative_error && mismatch_fraction <= max_lobe_mismatch_fraction;
     std::printf("%s: %zu queries, max relative error %.3g (query %zu), lobe mismatches %zu, non-finite %zu: %s\n", name,
                 query_count, worst, worst_query, lobe_mismatches, nonfinite, pass ? "agrees with the C++ build" : "FAILED");
     return pass;

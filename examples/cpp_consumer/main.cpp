@@ -25,7 +25,8 @@ float albedo(const OpenPBR_ResolvedInputs& material, const vec3& view, int n)
     {
         for (int j = 0; j < n; ++j)
         {
-            const vec3 u((float(i) + 0.5f) / float(n), (float(j) + 0.5f) / float(n), (float(i * n + j) + 0.5f) / float(n * n));
+            const vec3 u((float(i) + 0.5f) / float(n), (float(j) + 0.5f) / float(n),
+                         (float(i * n + j) + 0.5f) / float(n * n));
             const OpenPBR_BsdfSample s = openpbr_sample(bsdf, u);
             if (s.pdf > 0.0f)
             {
@@ -55,8 +56,8 @@ int main()
     const vec3 light = normalize(vec3(-0.4f, 0.2f, 1.0f));
     const OpenPBR_PreparedBsdf bsdf = openpbr_prepare(material, view);
     const OpenPBR_DiffuseSpecular f = openpbr_eval(bsdf, light);
-    std::printf("cpp_consumer: eval diffuse (%g %g %g) specular (%g %g %g), pdf %g\n", f.diffuse.x, f.diffuse.y,
-                f.diffuse.z, f.specular.x, f.specular.y, f.specular.z, openpbr_pdf(bsdf, light));
+    std::printf("cpp_consumer: eval diffuse (%g %g %g) specular (%g %g %g), pdf %g\n", f.diffuse.x, f.diffuse.y, f.diffuse.z,
+                f.specular.x, f.specular.y, f.specular.z, openpbr_pdf(bsdf, light));
 
     const std::vector<OpenPBR_ResolvedInputs> materials = make_materials();
     const std::vector<float> queries = make_queries(1024, materials.size());

@@ -70,12 +70,27 @@ constexpr int emission_slot_end = 21;
 
 const char* slot_name(int slot)
 {
-    static const char* names[] = {"eval.diffuse.r",  "eval.diffuse.g",  "eval.diffuse.b",  "eval.specular.r",
-                                  "eval.specular.g", "eval.specular.b", "pdf",             "sample.direction.x",
-                                  "sample.direction.y", "sample.direction.z", "sample.weight.diffuse.r",
-                                  "sample.weight.diffuse.g", "sample.weight.diffuse.b", "sample.weight.specular.r",
-                                  "sample.weight.specular.g", "sample.weight.specular.b", "sample.pdf",
-                                  "sample.lobe_type", "emission.r", "emission.g", "emission.b"};
+    static const char* names[] = {"eval.diffuse.r",
+                                  "eval.diffuse.g",
+                                  "eval.diffuse.b",
+                                  "eval.specular.r",
+                                  "eval.specular.g",
+                                  "eval.specular.b",
+                                  "pdf",
+                                  "sample.direction.x",
+                                  "sample.direction.y",
+                                  "sample.direction.z",
+                                  "sample.weight.diffuse.r",
+                                  "sample.weight.diffuse.g",
+                                  "sample.weight.diffuse.b",
+                                  "sample.weight.specular.r",
+                                  "sample.weight.specular.g",
+                                  "sample.weight.specular.b",
+                                  "sample.pdf",
+                                  "sample.lobe_type",
+                                  "emission.r",
+                                  "emission.g",
+                                  "emission.b"};
     return slot < 21 ? names[slot] : "unused";
 }
 
@@ -192,9 +207,10 @@ GpuBatchResult dispatch_conformance(ComputePipeline& pipeline, const std::vector
     std::vector<std::byte> query_bytes = to_bytes(queries);
     std::vector<std::byte> material_bytes = to_bytes(materials);
     std::vector<std::byte> result_bytes(query_count * OPENPBR_RESULT_FLOATS * sizeof(float));
-    std::vector<std::byte> parameter_bytes = to_bytes(std::vector<std::uint32_t>{std::uint32_t(query_count), settings.mode, 0, 0});
-    std::vector<BufferBinding> buffers = {{2, &query_bytes, false}, {3, &material_bytes, false},
-                                          {4, &parameter_bytes, false}, {5, &result_bytes, true}};
+    std::vector<std::byte> parameter_bytes =
+        to_bytes(std::vector<std::uint32_t>{std::uint32_t(query_count), settings.mode, 0, 0});
+    std::vector<BufferBinding> buffers = {
+        {2, &query_bytes, false}, {3, &material_bytes, false}, {4, &parameter_bytes, false}, {5, &result_bytes, true}};
     std::vector<std::vector<std::byte>> texture_bytes;
     if (settings.texture_tables)
     {
@@ -259,8 +275,8 @@ GpuBatchResult execute_gpu_path(const GpuPath& path, VulkanContext& context, con
 }
 
 // The pooled metric: every compared slot's relative error (floor 1e-3) in one population.
-void compare_pooled(ConformancePathResult& result, const std::vector<float>& queries,
-                    const std::vector<float>& gpu_results, const std::vector<float>& cpu_results)
+void compare_pooled(ConformancePathResult& result, const std::vector<float>& queries, const std::vector<float>& gpu_results,
+                    const std::vector<float>& cpu_results)
 {
     const std::size_t query_count = queries.size() / OPENPBR_QUERY_FLOATS;
     std::vector<double> errors;
@@ -304,7 +320,7 @@ struct ChannelAccumulator
     ConformanceChannel channel;
     std::vector<double> errors;
     std::vector<double> p999_ratios;  // error / its p99.9 allowance (docs/conformance.md)
-    double max_ratio = 0.0;          // largest error / its max allowance
+    double max_ratio = 0.0;           // largest error / its max allowance
 
     // A non-finite error (NaN on one side) is the worst possible value.
     static double finite_or_worst(double value)
@@ -348,7 +364,6 @@ struct ChannelAccumulator
     }
 };
 
-
 // Angle between two directions, radians: 2 asin(|a/|a| - b/|b|| / 2) stays accurate for tiny
 // angles, where acos of the dot product loses everything below about 3e-4 rad in float and
 // 2e-8 in double.
@@ -369,10 +384,7 @@ double angle_between(const float* a, const float* b)
     return 2.0 * std::asin(std::min(1.0, 0.5 * std::sqrt(chord)));
 }
 
-bool is_delta_lobe(float lobe_type)
-{
-    return (std::uint32_t(lobe_type) & OPENPBR_LOBE_TYPE_SPECULAR) != 0u;
-}
+bool is_delta_lobe(float lobe_type) { return (std::uint32_t(lobe_type) & OPENPBR_LOBE_TYPE_SPECULAR) != 0u; }
 
 // Compares one path's results with the CPU build's: the per-kind metric (docs/conformance.md)
 // and the pooled one. Sampled outputs are chaotic in the last bit of the random numbers, so a
@@ -380,9 +392,8 @@ bool is_delta_lobe(float lobe_type)
 // pdf at the path's own direction (the CPU kernel run again, same materials and views, with the
 // light set to that direction). Delta samples (weight and pdf independent of a warp) and the
 // direction (as an angle) are compared with the CPU's sample where the lobes agree.
-void compare_with_cpu(ConformancePathResult& result, const std::vector<float>& queries,
-                      const std::vector<float>& materials, const std::vector<float>& gpu_results,
-                      const std::vector<float>& cpu_results)
+void compare_with_cpu(ConformancePathResult& result, const std::vector<float>& queries, const std::vector<float>& materials,
+                      const std::vector<float>& gpu_results, const std::vector<float>& cpu_results)
 {
     const std::size_t query_count = queries.size() / OPENPBR_QUERY_FLOATS;
     compare_pooled(result, queries, gpu_results, cpu_results);
@@ -414,14 +425,28 @@ void compare_with_cpu(ConformancePathResult& result, const std::vector<float>& q
     // emission rgb (7-9), sample.consistency.pdf (10), its weight.diffuse rgb (11-13) and
     // weight.specular rgb (14-16), sample.delta.pdf (17), its weight.specular rgb (18-20),
     // sample.direction.angle (21).
-    static const char* const channel_names[] = {
-        "eval.diffuse.r", "eval.diffuse.g", "eval.diffuse.b", "eval.specular.r", "eval.specular.g", "eval.specular.b",
-        "pdf", "emission.r", "emission.g", "emission.b", "sample.consistency.pdf",
-        "sample.consistency.weight.diffuse.r", "sample.consistency.weight.diffuse.g",
-        "sample.consistency.weight.diffuse.b", "sample.consistency.weight.specular.r",
-        "sample.consistency.weight.specular.g", "sample.consistency.weight.specular.b", "sample.delta.pdf",
-        "sample.delta.weight.specular.r", "sample.delta.weight.specular.g", "sample.delta.weight.specular.b",
-        "sample.direction.angle"};
+    static const char* const channel_names[] = {"eval.diffuse.r",
+                                                "eval.diffuse.g",
+                                                "eval.diffuse.b",
+                                                "eval.specular.r",
+                                                "eval.specular.g",
+                                                "eval.specular.b",
+                                                "pdf",
+                                                "emission.r",
+                                                "emission.g",
+                                                "emission.b",
+                                                "sample.consistency.pdf",
+                                                "sample.consistency.weight.diffuse.r",
+                                                "sample.consistency.weight.diffuse.g",
+                                                "sample.consistency.weight.diffuse.b",
+                                                "sample.consistency.weight.specular.r",
+                                                "sample.consistency.weight.specular.g",
+                                                "sample.consistency.weight.specular.b",
+                                                "sample.delta.pdf",
+                                                "sample.delta.weight.specular.r",
+                                                "sample.delta.weight.specular.g",
+                                                "sample.delta.weight.specular.b",
+                                                "sample.direction.angle"};
     constexpr int eval_diffuse = 0, eval_specular = 3, pdf_channel = 6, emission = 7, consistency_pdf = 10,
                   consistency_diffuse = 11, consistency_specular = 14, delta_pdf = 17, delta_specular = 18,
                   direction_angle = 21, channel_count = 22;
@@ -462,18 +487,18 @@ void compare_with_cpu(ConformancePathResult& result, const std::vector<float>& q
             const double difference = std::fabs(double(gpu_value) - cpu_value);
             const double scale = std::max(std::fabs(cpu_value), tolerances.relative_floor);
             const double sensitivity = tolerances.condition_factor * change;
-            channels[std::size_t(index)].add(difference / scale,
-                                             difference / std::max(tolerances.relative_p999 * scale, sensitivity),
-                                             difference / std::max(tolerances.relative_max * scale, sensitivity), query,
-                                             gpu_value, cpu_value);
+            channels[std::size_t(index)].add(
+                difference / scale, difference / std::max(tolerances.relative_p999 * scale, sensitivity),
+                difference / std::max(tolerances.relative_max * scale, sensitivity), query, gpu_value, cpu_value);
         };
         for (int c = 0; c < 3; ++c)
         {
             for (const int slot : {c, 3 + c, emission_slot_begin + c})
             {
                 const int index = slot < 3 ? eval_diffuse + c : slot < 6 ? eval_specular + c : emission + c;
-                relative(index, gpu[slot], cpu[slot],
-                         largest_change(cpu[slot], [&](int pattern) { return double(cpu_nudged[std::size_t(pattern)][record + std::size_t(slot)]); }));
+                relative(index, gpu[slot], cpu[slot], largest_change(cpu[slot], [&](int pattern) {
+                             return double(cpu_nudged[std::size_t(pattern)][record + std::size_t(slot)]);
+                         }));
             }
         }
         relative(pdf_channel, gpu[6], cpu[6],
@@ -498,7 +523,8 @@ void compare_with_cpu(ConformancePathResult& result, const std::vector<float>& q
                 {
                     const double expected = ratio(cpu_there[slot], pdf_there);
                     relative((slot < 3 ? consistency_diffuse : consistency_specular) + c, gpu[10 + slot], expected,
-                             largest_change(expected, [&](int pattern) { return ratio(there(pattern, slot), there(pattern, 6)); }));
+                             largest_change(expected,
+                                            [&](int pattern) { return ratio(there(pattern, slot), there(pattern, 6)); }));
                 }
             }
         }
@@ -545,8 +571,8 @@ ConformancePathResult run_gpu_path(const GpuPath& path, VulkanContext& context, 
     {
         // One pipeline per toggle set the materials need (host/scene/features.h); the first-dispatch
         // time is that of every set together, the steady-state time the sum over the sets.
-        const SpecializedConformanceRun run = run_conformance_gpu_specialized(
-            path.name, context, queries, material_list, options.kernel_directory, std::nullopt, 3);
+        const SpecializedConformanceRun run = run_conformance_gpu_specialized(path.name, context, queries, material_list,
+                                                                              options.kernel_directory, std::nullopt, 3);
         batch.results = run.results;
         batch.timing.dispatch_ms = run.dispatch_ms;
         for (const SpecializedPipelineTiming& pipeline : run.pipelines)
@@ -655,10 +681,7 @@ SpecializedConformanceRun run_conformance_gpu_specialized(const std::string& pat
     return run;
 }
 
-std::vector<std::string> cpu_conformance_paths()
-{
-    return {"cpu-fma", "cpu-fast", "cpu-ulp"};
-}
+std::vector<std::string> cpu_conformance_paths() { return {"cpu-fma", "cpu-fast", "cpu-ulp"}; }
 
 std::vector<float> nudge_random_numbers(const std::vector<float>& queries)
 {
@@ -795,8 +818,9 @@ std::vector<float> run_conformance_cpu(const std::vector<float>& queries, const 
     cpu_kernel::queries = queries.data();
     cpu_kernel::materials = materials.data();
     cpu_kernel::results = results.data();
-    tbb::parallel_for(std::size_t(0), query_count,
-                      [](std::size_t query) { openpbr::openpbr_conformance_run_query(unsigned(query), OPENPBR_CONFORMANCE_MODE_ALL); });
+    tbb::parallel_for(std::size_t(0), query_count, [](std::size_t query) {
+        openpbr::openpbr_conformance_run_query(unsigned(query), OPENPBR_CONFORMANCE_MODE_ALL);
+    });
     return results;
 }
 
@@ -856,7 +880,8 @@ ConformanceReport run_conformance(const std::vector<Material>& materials, const 
         {
             result.note = name == "cpu-fma" ? "CPU, -mfma -ffp-contract=fast"
                                             : "CPU, -mfma -ffp-contract=fast -freciprocal-math, fast sqrt/normalize";
-            results = name == "cpu-fma" ? run_conformance_cpu_fma(queries, packed) : run_conformance_cpu_fast(queries, packed);
+            results =
+                name == "cpu-fma" ? run_conformance_cpu_fma(queries, packed) : run_conformance_cpu_fast(queries, packed);
         }
         const double seconds = stopwatch.seconds();
         result.queries_per_second = seconds > 0.0 ? double(queries.size() / OPENPBR_QUERY_FLOATS) / seconds : 0.0;
@@ -1028,8 +1053,8 @@ std::string to_text(const ConformanceReport& report)
             text << "  " << path.name << ": not executed: " << path.note << "\n";
             continue;
         }
-        text << "  " << path.name << " (" << path.note << "): max rel err " << path.max_relative_error
-             << ", p99.9 " << path.p999_relative_error << ", non-finite " << path.nonfinite << ", lobe mismatch "
+        text << "  " << path.name << " (" << path.note << "): max rel err " << path.max_relative_error << ", p99.9 "
+             << path.p999_relative_error << ", non-finite " << path.nonfinite << ", lobe mismatch "
              << 100.0 * path.lobe_mismatch_fraction << " %, " << std::lround(path.queries_per_second)
              << " queries/s, first dispatch " << path.first_dispatch_ms << " ms, " << path.pipeline_count
              << (path.pipeline_count == 1 ? " pipeline\n" : " pipelines\n");
@@ -1042,8 +1067,8 @@ std::string to_text(const ConformanceReport& report)
         }
         const std::vector<std::string> violations = conformance_violations(path);
         text << "    per kind: eval/pdf/consistency worst channel max " << relative_max << ", p99.9 " << relative_p999
-             << "; direction angle max " << angle_max << " rad, p99.9 " << angle_p999 << " rad: "
-             << (violations.empty() ? "passes" : "FAILS") << "\n";
+             << "; direction angle max " << angle_max << " rad, p99.9 " << angle_p999
+             << " rad: " << (violations.empty() ? "passes" : "FAILS") << "\n";
         for (const std::string& violation : violations)
         {
             text << "      " << violation << "\n";

@@ -45,7 +45,7 @@ struct ConformanceChannel
     // p99.9 bound, the largest with the max bound; the channel passes when both are <= 1.
     double p999_bound_ratio = 0.0;
     double max_bound_ratio = 0.0;
-    std::string worst;      // the value with the largest max_bound_ratio, for diagnosis
+    std::string worst;  // the value with the largest max_bound_ratio, for diagnosis
 };
 
 // The bounds of the per-kind metric; docs/conformance.md gives the measurements behind each.
@@ -84,21 +84,21 @@ const ConformanceTolerances& conformance_tolerances();
 // Per GPU path, the comparison against the CPU build.
 struct ConformancePathResult
 {
-    std::string name;            // e.g. "slang-spirv"
+    std::string name;  // e.g. "slang-spirv"
     bool executed = false;
-    std::string note;            // why it did not execute, or the device name
+    std::string note;  // why it did not execute, or the device name
     // The per-kind metric, one entry per channel (see ConformanceTolerances).
     std::vector<ConformanceChannel> channels;
     // The pooled metric (every compared output slot, sampled direction components included,
     // relative error with a 1e-3 floor), kept for comparison: FMA alone breaks its max bound.
     double max_relative_error = 0.0;
     double p999_relative_error = 0.0;
-    std::size_t nonfinite = 0;   // non-finite outputs on the GPU side
+    std::size_t nonfinite = 0;  // non-finite outputs on the GPU side
     double lobe_mismatch_fraction = 0.0;
     double first_dispatch_ms = 0.0;
     double queries_per_second = 0.0;
     std::size_t validation_messages = 0;
-    std::string worst_output;    // where the maximum error occurred, for diagnosis
+    std::string worst_output;        // where the maximum error occurred, for diagnosis
     std::size_t pipeline_count = 0;  // pipelines built (one per toggle set when specialized)
     // Kernel time per query measured on the device (Vulkan timestamps, CUDA events), when the
     // path has one.
@@ -197,7 +197,7 @@ struct SpecializedConformanceRun
     std::vector<float> results;  // laid out like run_conformance_cpu's
     std::vector<SpecializedPipelineTiming> pipelines;
     std::size_t pipeline_builds = 0;
-    double dispatch_ms = 0.0;  // sum of the groups' steady-state dispatch times
+    double dispatch_ms = 0.0;                  // sum of the groups' steady-state dispatch times
     std::optional<double> device_dispatch_ms;  // the same from GPU timestamps, when the queue has them
 };
 

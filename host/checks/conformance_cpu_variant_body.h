@@ -32,8 +32,9 @@ std::vector<float> OPENPBR_CONFORMANCE_CPU_VARIANT_FUNCTION(const std::vector<fl
     variant::cpu_kernel::queries = queries.data();
     variant::cpu_kernel::materials = materials.data();
     variant::cpu_kernel::results = results.data();
-    tbb::parallel_for(std::size_t(0), query_count,
-                      [](std::size_t query) { variant::openpbr_conformance_run_query(unsigned(query), OPENPBR_CONFORMANCE_MODE_ALL); });
+    tbb::parallel_for(std::size_t(0), query_count, [](std::size_t query) {
+        variant::openpbr_conformance_run_query(unsigned(query), OPENPBR_CONFORMANCE_MODE_ALL);
+    });
     return results;
 }
 

@@ -75,8 +75,7 @@ OpenPBR_ResolvedInputs white_glass(float roughness, float ior)
 
 // One configuration built by a lambda over a starting material, e.g.
 // with(white_dielectric(0.3f, 0.0f), [](auto& i) { i.coat_weight = 1.0f; }).
-template <typename Edit>
-OpenPBR_ResolvedInputs with(OpenPBR_ResolvedInputs inputs, Edit edit)
+template <typename Edit> OpenPBR_ResolvedInputs with(OpenPBR_ResolvedInputs inputs, Edit edit)
 {
     edit(inputs);
     return inputs;
@@ -118,11 +117,12 @@ std::vector<FurnaceConfig> make_configs()
         {"white_very_rough_glass", white_glass(1.0f, 1.5f), E::energy_conserving, both},
         {"white_glass_ior3_r0p3", white_glass(0.3f, 3.0f), E::energy_conserving, both},
         // ... or white transmission_scatter with a medium.
-        {"white_glass_with_medium", with(white_glass(0.3f, 1.5f),
-                                         [](auto& i) {
-                                             i.transmission_depth = 1.0f;
-                                             i.transmission_scatter = vec3(1.0f);
-                                         }),
+        {"white_glass_with_medium",
+         with(white_glass(0.3f, 1.5f),
+              [](auto& i) {
+                  i.transmission_depth = 1.0f;
+                  i.transmission_scatter = vec3(1.0f);
+              }),
          E::energy_conserving, both},
         // Thin-walled glass and sheet (spec "Thin-walled case").
         {"white_thin_walled_glass_r0p3", with(white_glass(0.3f, 1.5f), [](auto& i) { i.geometry_thin_walled = true; })},
@@ -215,10 +215,10 @@ std::vector<FurnaceConfig> make_configs()
     {
         for (const float roughness : {0.0f, 0.2f, 0.5f})
         {
-            configs.push_back({"sweep_glass_specular_weight" + furnace_number(specular_weight) + "_r" +
-                                   furnace_number(roughness),
-                               with(white_glass(roughness, 1.5f), [specular_weight](auto& i) { i.specular_weight = specular_weight; }),
-                               E::relative_ior_sweep, both});
+            configs.push_back(
+                {"sweep_glass_specular_weight" + furnace_number(specular_weight) + "_r" + furnace_number(roughness),
+                 with(white_glass(roughness, 1.5f), [specular_weight](auto& i) { i.specular_weight = specular_weight; }),
+                 E::relative_ior_sweep, both});
         }
     }
     // In water (exterior IOR 1.33): glass (relative 1.13), an air bubble (0.75), a water drop
@@ -273,8 +273,8 @@ const std::vector<float>& white_furnace_view_cosines()
 
 const std::vector<float>& furnace_relative_iors()
 {
-    static const std::vector<float> iors = {0.5f, 0.67f, 0.75f, 0.9f, 0.99f, 1.0f, 1.001f,
-                                            1.01f, 1.05f, 1.2f, 1.5f, 2.0f, 3.0f};
+    static const std::vector<float> iors = {0.5f,  0.67f, 0.75f, 0.9f, 0.99f, 1.0f, 1.001f,
+                                            1.01f, 1.05f, 1.2f,  1.5f, 2.0f,  3.0f};
     return iors;
 }
 
@@ -307,23 +307,23 @@ const std::vector<FurnaceKnownLimit>& furnace_known_limits()
     // 0.02), where the 3D tables' roughness axis (33 nodes, r = 0.031 and 0.062 around 0.05)
     // interpolates the albedo of a near-mirror lobe (README "Known limits").
     static const std::vector<FurnaceKnownLimit> limits = {
-        {"sweep_glass_eta0p5_r0p05_inside", 0.02f, 0.970, 1.013},  // measured 1.0091 +- 0.0003
-        {"sweep_glass_eta0p67_r0p05_inside", 0.02f, 0.970, 1.012},  // measured 1.0088 +- 0.0003
-        {"sweep_glass_eta0p75_r0p05_inside", 0.02f, 0.970, 1.011},  // measured 1.0080 +- 0.0002
-        {"sweep_glass_eta0p9_r0p05_inside", 0.02f, 0.970, 1.010},  // measured 1.0065 +- 0.0003
-        {"sweep_glass_eta1_r0p05", 0.02f, 0.970, 1.008},  // measured 1.0052 +- 0.0000
-        {"sweep_glass_eta1_r0p05_inside", 0.02f, 0.970, 1.008},  // measured 1.0052 +- 0.0000
+        {"sweep_glass_eta0p5_r0p05_inside", 0.02f, 0.970, 1.013},    // measured 1.0091 +- 0.0003
+        {"sweep_glass_eta0p67_r0p05_inside", 0.02f, 0.970, 1.012},   // measured 1.0088 +- 0.0003
+        {"sweep_glass_eta0p75_r0p05_inside", 0.02f, 0.970, 1.011},   // measured 1.0080 +- 0.0002
+        {"sweep_glass_eta0p9_r0p05_inside", 0.02f, 0.970, 1.010},    // measured 1.0065 +- 0.0003
+        {"sweep_glass_eta1_r0p05", 0.02f, 0.970, 1.008},             // measured 1.0052 +- 0.0000
+        {"sweep_glass_eta1_r0p05_inside", 0.02f, 0.970, 1.008},      // measured 1.0052 +- 0.0000
         {"sweep_glass_eta1p001_r0p05_inside", 0.02f, 0.970, 1.011},  // measured 1.0071 +- 0.0003
-        {"sweep_glass_eta1p01_r0p05", 0.02f, 0.970, 1.010},  // measured 1.0063 +- 0.0004
-        {"sweep_glass_eta1p05_r0p05", 0.02f, 0.970, 1.012},  // measured 1.0080 +- 0.0003
-        {"sweep_glass_eta1p05_r0p05_inside", 0.02f, 0.970, 1.010},  // measured 1.0061 +- 0.0003
-        {"sweep_glass_eta1p2_r0p05", 0.02f, 0.970, 1.011},  // measured 1.0073 +- 0.0003
-        {"sweep_glass_eta1p5_r0p05", 0.02f, 0.970, 1.017},  // measured 1.0138 +- 0.0003
-        {"sweep_glass_eta1p5_r0p05_inside", 0.02f, 0.970, 1.013},  // measured 1.0090 +- 0.0003
-        {"sweep_glass_eta2_r0p05", 0.02f, 0.970, 1.018},  // measured 1.0141 +- 0.0003
-        {"sweep_glass_eta2_r0p05_inside", 0.02f, 0.970, 1.013},  // measured 1.0099 +- 0.0003
-        {"sweep_glass_eta3_r0p05", 0.02f, 0.970, 1.017},  // measured 1.0133 +- 0.0003
-        {"sweep_glass_eta3_r0p05_inside", 0.02f, 0.970, 1.012},  // measured 1.0089 +- 0.0003
+        {"sweep_glass_eta1p01_r0p05", 0.02f, 0.970, 1.010},          // measured 1.0063 +- 0.0004
+        {"sweep_glass_eta1p05_r0p05", 0.02f, 0.970, 1.012},          // measured 1.0080 +- 0.0003
+        {"sweep_glass_eta1p05_r0p05_inside", 0.02f, 0.970, 1.010},   // measured 1.0061 +- 0.0003
+        {"sweep_glass_eta1p2_r0p05", 0.02f, 0.970, 1.011},           // measured 1.0073 +- 0.0003
+        {"sweep_glass_eta1p5_r0p05", 0.02f, 0.970, 1.017},           // measured 1.0138 +- 0.0003
+        {"sweep_glass_eta1p5_r0p05_inside", 0.02f, 0.970, 1.013},    // measured 1.0090 +- 0.0003
+        {"sweep_glass_eta2_r0p05", 0.02f, 0.970, 1.018},             // measured 1.0141 +- 0.0003
+        {"sweep_glass_eta2_r0p05_inside", 0.02f, 0.970, 1.013},      // measured 1.0099 +- 0.0003
+        {"sweep_glass_eta3_r0p05", 0.02f, 0.970, 1.017},             // measured 1.0133 +- 0.0003
+        {"sweep_glass_eta3_r0p05_inside", 0.02f, 0.970, 1.012},      // measured 1.0089 +- 0.0003
         // Heavy-tailed estimates: below eta = 1 seen from outside at roughness 0.2 the light the
         // mostly totally reflecting interface does not reflect, 1 - E_R, goes to the few
         // transmitting microfacets with weights up to 990 ((1 - E_R) / E_T0), so the estimates
@@ -373,8 +373,8 @@ vec3 furnace_view(const OpenPBR_ResolvedInputs& inputs, float cos_theta, Furnace
                      frame.normal * cos_signed);
 }
 
-FurnaceEstimate estimate_furnace_albedo(const OpenPBR_ResolvedInputs& inputs, const vec3& view_world,
-                                        std::uint64_t samples, std::uint64_t seed, float exterior_ior)
+FurnaceEstimate estimate_furnace_albedo(const OpenPBR_ResolvedInputs& inputs, const vec3& view_world, std::uint64_t samples,
+                                        std::uint64_t seed, float exterior_ior)
 {
     const OpenPBR_PreparedBsdf bsdf = openpbr_prepare(inputs, view_world, OPENPBR_DEFAULT_RGB_WAVELENGTHS_NM, exterior_ior);
     const std::uint64_t stream = splitmix64(seed);
@@ -490,11 +490,11 @@ std::string furnace_to_text(const std::vector<FurnaceRow>& rows)
     {
         const FurnaceEstimate& e = row.estimate;
         const double error = std::max({e.standard_error[0], e.standard_error[1], e.standard_error[2]});
-        text << std::left << std::setw(44) << row.name << std::right << std::setw(8) << std::setprecision(3)
-             << row.cos_theta << std::fixed << std::setprecision(5) << std::setw(10) << e.albedo[0] << std::setw(10)
-             << e.albedo[1] << std::setw(10) << e.albedo[2] << std::setw(10) << error << std::setprecision(2)
-             << std::setw(12) << e.max_weight << "  " << (row.within_tolerance ? "ok" : "FAIL")
-             << (row.known_limit ? " (known limit)" : "") << "\n"
+        text << std::left << std::setw(44) << row.name << std::right << std::setw(8) << std::setprecision(3) << row.cos_theta
+             << std::fixed << std::setprecision(5) << std::setw(10) << e.albedo[0] << std::setw(10) << e.albedo[1]
+             << std::setw(10) << e.albedo[2] << std::setw(10) << error << std::setprecision(2) << std::setw(12)
+             << e.max_weight << "  " << (row.within_tolerance ? "ok" : "FAIL") << (row.known_limit ? " (known limit)" : "")
+             << "\n"
              << std::defaultfloat;
     }
     return text.str();

@@ -54,7 +54,7 @@ const std::vector<FurnaceConfig>& white_furnace_configs();
 const std::vector<float>& white_furnace_view_cosines();
 
 // Tolerances of the white furnace: what a white, energy-conserving material must meet.
-constexpr double furnace_tolerance = 0.005;   // |1 - albedo| for cos >= furnace_tolerance_min_cos
+constexpr double furnace_tolerance = 0.005;  // |1 - albedo| for cos >= furnace_tolerance_min_cos
 constexpr double furnace_tolerance_min_cos = 0.1;
 constexpr double furnace_max_albedo = 1.005;  // at every angle
 
@@ -74,7 +74,7 @@ bool furnace_albedo_passes(FurnaceExpectation expectation, float cos_theta, doub
 // widened by its noise. README "Known limits" lists them and why.
 struct FurnaceKnownLimit
 {
-    const char* row;   // configuration name with "_inside" for the inside view
+    const char* row;  // configuration name with "_inside" for the inside view
     float cos_theta;
     double min_albedo;
     double max_albedo;
@@ -98,7 +98,7 @@ vec3 furnace_view(const OpenPBR_ResolvedInputs& inputs, float cos_theta, Furnace
 
 struct FurnaceEstimate
 {
-    double albedo[3] = {0.0, 0.0, 0.0};          // mean sample weight per channel
+    double albedo[3] = {0.0, 0.0, 0.0};  // mean sample weight per channel
     double standard_error[3] = {0.0, 0.0, 0.0};
     double max_weight = 0.0;
     std::uint64_t samples = 0;
@@ -106,8 +106,8 @@ struct FurnaceEstimate
 
 // Mean of openpbr_sample weights (diffuse + specular, delta samples included, no sample = 0)
 // from `samples` independent samples (PCG32 streams, TBB-parallel, deterministic per seed).
-FurnaceEstimate estimate_furnace_albedo(const OpenPBR_ResolvedInputs& inputs, const vec3& view_world,
-                                        std::uint64_t samples, std::uint64_t seed, float exterior_ior = 1.0f);
+FurnaceEstimate estimate_furnace_albedo(const OpenPBR_ResolvedInputs& inputs, const vec3& view_world, std::uint64_t samples,
+                                        std::uint64_t seed, float exterior_ior = 1.0f);
 
 struct FurnaceOptions
 {

@@ -111,20 +111,19 @@ float parse_float(const nlohmann::json& value, const Where& where)
         {
             return -denormal_value;
         }
-        throw StabilityCorpusError(
-            where("unknown special value \"" + text + "\" (expected a number, \"nan\", \"inf\", \"-inf\", \"denorm\" or \"-denorm\")"));
+        throw StabilityCorpusError(where("unknown special value \"" + text +
+                                         "\" (expected a number, \"nan\", \"inf\", \"-inf\", \"denorm\" or \"-denorm\")"));
     }
     throw StabilityCorpusError(where(std::string("expected a number or a special-value string, got ") + value.type_name()));
 }
 
-template <int N>
-std::array<float, N> parse_floats(const nlohmann::json& value, const Where& where, const char* kind)
+template <int N> std::array<float, N> parse_floats(const nlohmann::json& value, const Where& where, const char* kind)
 {
     if (!value.is_array() || value.size() != std::size_t(N))
     {
-        throw StabilityCorpusError(where(std::string("expected ") + kind + " (an array of " + std::to_string(N) +
-                                         " numbers), got " + (value.is_array() ? "an array of " + std::to_string(value.size())
-                                                                                : std::string(value.type_name()))));
+        throw StabilityCorpusError(
+            where(std::string("expected ") + kind + " (an array of " + std::to_string(N) + " numbers), got " +
+                  (value.is_array() ? "an array of " + std::to_string(value.size()) : std::string(value.type_name()))));
     }
     std::array<float, N> result{};
     for (int i = 0; i < N; ++i)
@@ -352,22 +351,34 @@ void fill_query(float* out, const StabilityCase& stability_case, std::size_t cas
 
 const char* slot_name(int slot)
 {
-    static const char* names[] = {"eval.diffuse.r",  "eval.diffuse.g",  "eval.diffuse.b",  "eval.specular.r",
-                                  "eval.specular.g", "eval.specular.b", "pdf",             "sample.direction.x",
-                                  "sample.direction.y", "sample.direction.z", "sample.weight.diffuse.r",
-                                  "sample.weight.diffuse.g", "sample.weight.diffuse.b", "sample.weight.specular.r",
-                                  "sample.weight.specular.g", "sample.weight.specular.b", "sample.pdf",
-                                  "sample.lobe_type", "emission.r", "emission.g", "emission.b"};
+    static const char* names[] = {"eval.diffuse.r",
+                                  "eval.diffuse.g",
+                                  "eval.diffuse.b",
+                                  "eval.specular.r",
+                                  "eval.specular.g",
+                                  "eval.specular.b",
+                                  "pdf",
+                                  "sample.direction.x",
+                                  "sample.direction.y",
+                                  "sample.direction.z",
+                                  "sample.weight.diffuse.r",
+                                  "sample.weight.diffuse.g",
+                                  "sample.weight.diffuse.b",
+                                  "sample.weight.specular.r",
+                                  "sample.weight.specular.g",
+                                  "sample.weight.specular.b",
+                                  "sample.pdf",
+                                  "sample.lobe_type",
+                                  "emission.r",
+                                  "emission.g",
+                                  "emission.b"};
     return slot >= 0 && slot < 21 ? names[slot] : "unused";
 }
 
 constexpr int checked_slots = 21;
 constexpr std::size_t max_violation_records = 5;
 
-bool must_be_non_negative(int slot)
-{
-    return slot <= 6 || (slot >= 10 && slot <= 16) || (slot >= 18 && slot <= 20);
-}
+bool must_be_non_negative(int slot) { return slot <= 6 || (slot >= 10 && slot <= 16) || (slot >= 18 && slot <= 20); }
 
 struct CaseAccumulator
 {
@@ -436,7 +447,8 @@ void accumulate(CaseAccumulator& accumulator, const float* query, const float* r
     {
         ++accumulator.delta;
     }
-    const double length = std::sqrt(double(result[7]) * result[7] + double(result[8]) * result[8] + double(result[9]) * result[9]);
+    const double length =
+        std::sqrt(double(result[7]) * result[7] + double(result[8]) * result[8] + double(result[9]) * result[9]);
     if (!(std::fabs(length - 1.0) <= 1e-3))
     {
         ++accumulator.bad_directions;
@@ -491,7 +503,8 @@ StabilityCaseResult finish_case(const std::string& name, const CaseAccumulator& 
         }
     }
     result.max_mean_weight = result.mean_weight[worst];
-    const double variance = std::max(0.0, accumulator.sum_squares[worst] / n - result.mean_weight[worst] * result.mean_weight[worst]);
+    const double variance =
+        std::max(0.0, accumulator.sum_squares[worst] / n - result.mean_weight[worst] * result.mean_weight[worst]);
     result.mean_weight_standard_error = std::sqrt(variance / n);
     return result;
 }
@@ -526,15 +539,14 @@ StabilityPathResult run_path(const std::string& name, const Executor& execute, c
         }
         // Queries are a pure function of (seed, case, query in case): filled in parallel.
         queries.resize(owners.size() * query_floats);
-        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, owners.size(), 4096),
-                          [&](const tbb::blocked_range<std::size_t>& range) {
-                              for (std::size_t q = range.begin(); q != range.end(); ++q)
-                              {
-                                  const auto [case_index, query_in_case] = owners[q];
-                                  fill_query(queries.data() + q * query_floats, cases[case_index], case_index,
-                                             query_in_case, seed);
-                              }
-                          });
+        tbb::parallel_for(
+            tbb::blocked_range<std::size_t>(0, owners.size(), 4096), [&](const tbb::blocked_range<std::size_t>& range) {
+                for (std::size_t q = range.begin(); q != range.end(); ++q)
+                {
+                    const auto [case_index, query_in_case] = owners[q];
+                    fill_query(queries.data() + q * query_floats, cases[case_index], case_index, query_in_case, seed);
+                }
+            });
         const std::vector<float> results = execute(queries, materials);
         if (results.size() != owners.size() * result_floats)
         {
@@ -554,8 +566,8 @@ StabilityPathResult run_path(const std::string& name, const Executor& execute, c
             for (std::size_t q = run_starts[run]; q < run_starts[run + 1]; ++q)
             {
                 const auto [case_index, query_in_case] = owners[q];
-                accumulate(accumulators[case_index], queries.data() + q * query_floats,
-                           results.data() + q * result_floats, query_in_case, cases[case_index].lights.size());
+                accumulate(accumulators[case_index], queries.data() + q * query_floats, results.data() + q * result_floats,
+                           query_in_case, cases[case_index].lights.size());
             }
         });
         owners.clear();
@@ -718,10 +730,9 @@ bool has_violations(const StabilityReport& report)
     {
         return true;
     }
-    return std::any_of(report.paths.begin(), report.paths.end(),
-                       [](const StabilityPathResult& path) {
-                           return path.nonfinite > 0 || path.negative > 0 || path.bad_directions > 0;
-                       });
+    return std::any_of(report.paths.begin(), report.paths.end(), [](const StabilityPathResult& path) {
+        return path.nonfinite > 0 || path.negative > 0 || path.bad_directions > 0;
+    });
 }
 
 StabilityReport run_stability(const std::vector<StabilityCase>& cases, const StabilityOptions& options)
@@ -753,7 +764,8 @@ StabilityReport run_stability(const std::vector<StabilityCase>& cases, const Sta
 
     if (std::find(wanted.begin(), wanted.end(), "cpu") != wanted.end())
     {
-        StabilityPathResult cpu = run_path("cpu", run_conformance_cpu, cases, materials, options.samples_per_case, options.seed);
+        StabilityPathResult cpu =
+            run_path("cpu", run_conformance_cpu, cases, materials, options.samples_per_case, options.seed);
         cpu.note = "CPU build (C++ single source)";
         report.paths.push_back(std::move(cpu));
     }
@@ -809,7 +821,7 @@ StabilityReport run_stability(const std::vector<StabilityCase>& cases, const Sta
             VulkanContext& device = *context;
             const std::string kernel_directory = options.kernel_directory;
             execute = [&device, &name, kernel_directory](const std::vector<float>& queries,
-                                                          const std::vector<float>& packed) {
+                                                         const std::vector<float>& packed) {
                 return run_conformance_gpu(name, device, queries, packed, kernel_directory);
             };
         }
@@ -869,18 +881,19 @@ nlohmann::json to_json(const StabilityReport& report)
         path_json["cases"] = nlohmann::json::array();
         for (const StabilityCaseResult& result : path.cases)
         {
-            nlohmann::json case_json = {{"name", result.name},
-                                        {"queries", result.queries},
-                                        {"samples", result.samples},
-                                        {"nonfinite", result.nonfinite},
-                                        {"negative", result.negative},
-                                        {"bad_directions", result.bad_directions},
-                                        {"invalid_sample_fraction", result.invalid_sample_fraction},
-                                        {"delta_samples", result.delta_samples},
-                                        {"max_weight", result.max_weight},
-                                        {"mean_weight", {result.mean_weight[0], result.mean_weight[1], result.mean_weight[2]}},
-                                        {"max_mean_weight", result.max_mean_weight},
-                                        {"mean_weight_standard_error", result.mean_weight_standard_error}};
+            nlohmann::json case_json = {
+                {"name", result.name},
+                {"queries", result.queries},
+                {"samples", result.samples},
+                {"nonfinite", result.nonfinite},
+                {"negative", result.negative},
+                {"bad_directions", result.bad_directions},
+                {"invalid_sample_fraction", result.invalid_sample_fraction},
+                {"delta_samples", result.delta_samples},
+                {"max_weight", result.max_weight},
+                {"mean_weight", {result.mean_weight[0], result.mean_weight[1], result.mean_weight[2]}},
+                {"max_mean_weight", result.max_mean_weight},
+                {"mean_weight_standard_error", result.mean_weight_standard_error}};
             if (!result.violations.empty())
             {
                 case_json["violations"] = nlohmann::json::array();
@@ -925,14 +938,15 @@ std::string to_text(const StabilityReport& report)
             continue;
         }
         text << "  " << path.name << " (" << path.note << "): non-finite " << path.nonfinite << ", negative "
-             << path.negative << ", max mean weight " << std::fixed << std::setprecision(5) << path.max_mean_weight
-             << " (" << path.max_mean_weight_case << "), max weight " << std::setprecision(3) << path.max_weight << " ("
+             << path.negative << ", max mean weight " << std::fixed << std::setprecision(5) << path.max_mean_weight << " ("
+             << path.max_mean_weight_case << "), max weight " << std::setprecision(3) << path.max_weight << " ("
              << path.max_weight_case << "), " << std::setprecision(1) << path.seconds << " s\n";
         text.unsetf(std::ios::floatfield);
         text << std::setprecision(6);
         text << "    " << std::left << std::setw(48) << "case" << std::right << std::setw(7) << "nonfin" << std::setw(7)
-             << "neg" << std::setw(9) << "invalid" << std::setw(9) << "delta" << std::setw(12) << "max_w"
-             << std::setw(10) << "mean_w" << std::setw(9) << "+-" << "\n";
+             << "neg" << std::setw(9) << "invalid" << std::setw(9) << "delta" << std::setw(12) << "max_w" << std::setw(10)
+             << "mean_w" << std::setw(9) << "+-"
+             << "\n";
         for (const StabilityCaseResult& result : path.cases)
         {
             const double n = double(std::max<std::size_t>(result.samples, 1));
@@ -946,8 +960,8 @@ std::string to_text(const StabilityReport& report)
             {
                 text << "      " << record.what << " at query " << record.query << ": view (" << record.view[0] << ", "
                      << record.view[1] << ", " << record.view[2] << "), light (" << record.light[0] << ", "
-                     << record.light[1] << ", " << record.light[2] << "), u (" << record.u[0] << ", " << record.u[1]
-                     << ", " << record.u[2] << ")\n";
+                     << record.light[1] << ", " << record.light[2] << "), u (" << record.u[0] << ", " << record.u[1] << ", "
+                     << record.u[2] << ")\n";
             }
         }
     }
@@ -956,9 +970,9 @@ std::string to_text(const StabilityReport& report)
     {
         if (!result.ok)
         {
-            text << "    " << result.name << ": extinction (" << result.extinction[0] << ", " << result.extinction[1]
-                 << ", " << result.extinction[2] << "), albedo (" << result.albedo[0] << ", " << result.albedo[1]
-                 << ", " << result.albedo[2] << "), anisotropy " << result.anisotropy << "\n";
+            text << "    " << result.name << ": extinction (" << result.extinction[0] << ", " << result.extinction[1] << ", "
+                 << result.extinction[2] << "), albedo (" << result.albedo[0] << ", " << result.albedo[1] << ", "
+                 << result.albedo[2] << "), anisotropy " << result.anisotropy << "\n";
         }
     }
     return text.str();

@@ -31,15 +31,15 @@ namespace openpbr::host {
 // The message names the file, the case and the field.
 class StabilityCorpusError : public std::runtime_error
 {
-public:
+  public:
     explicit StabilityCorpusError(const std::string& message) : std::runtime_error(message) {}
     ~StabilityCorpusError() override;
 };
 
 struct StabilityCase
 {
-    std::string name;         // e.g. "glass_inside_total_internal_reflection"
-    std::string description;  // optional free text from the corpus
+    std::string name;                        // e.g. "glass_inside_total_internal_reflection"
+    std::string description;                 // optional free text from the corpus
     openpbr::OpenPBR_ResolvedInputs inputs;  // spec defaults with the case's overrides, unclamped
     glm::vec3 view{0.0f, 0.0f, 1.0f};        // as written (not normalized)
     float exterior_ior = 1.0f;               // IOR of the medium around the surface, e.g. 1.33 (water)
@@ -63,10 +63,10 @@ struct StabilityOptions
     // query stream, so a GPU path with fewer samples checks the first queries the CPU checks.
     std::size_t gpu_samples_per_case = 0;
     std::uint64_t seed = 1;
-    std::string kernel_directory;    // compiled kernels (.spv), e.g. build/kernels
+    std::string kernel_directory;  // compiled kernels (.spv), e.g. build/kernels
     // Paths to run, e.g. {"cpu", "slang-spirv"}; empty = "cpu" and every known GPU path.
     std::vector<std::string> paths;
-    bool validation = false;         // Vulkan validation layers
+    bool validation = false;  // Vulkan validation layers
 };
 
 // A query as the conformance kernel sees it, with what it produced: for reproducing a finding.
@@ -83,26 +83,26 @@ struct StabilityQueryRecord
 struct StabilityCaseResult
 {
     std::string name;
-    std::size_t queries = 0;            // lights + samples
-    std::size_t samples = 0;            // extra samples used for the statistics below
-    std::size_t nonfinite = 0;          // non-finite output values (eval, pdf, sample, emission)
-    std::size_t negative = 0;           // negative eval, pdf, weight, sample pdf or emission values
-    std::size_t invalid_samples = 0;    // pdf == 0 or lobe type NONE (among the samples)
-    std::size_t delta_samples = 0;      // samples from delta lobes
-    std::size_t bad_directions = 0;     // samples whose direction is not of unit length (|length - 1| > 1e-3)
+    std::size_t queries = 0;          // lights + samples
+    std::size_t samples = 0;          // extra samples used for the statistics below
+    std::size_t nonfinite = 0;        // non-finite output values (eval, pdf, sample, emission)
+    std::size_t negative = 0;         // negative eval, pdf, weight, sample pdf or emission values
+    std::size_t invalid_samples = 0;  // pdf == 0 or lobe type NONE (among the samples)
+    std::size_t delta_samples = 0;    // samples from delta lobes
+    std::size_t bad_directions = 0;   // samples whose direction is not of unit length (|length - 1| > 1e-3)
     double invalid_sample_fraction = 0.0;
-    double max_weight = 0.0;            // max over samples of the max channel of diffuse + specular weight
-    double mean_weight[3] = {0, 0, 0};  // per channel mean of the sample weights (invalid samples count 0)
-    double max_mean_weight = 0.0;       // max channel of mean_weight: the directional albedo estimate
-    double mean_weight_standard_error = 0.0;  // of the channel reported in max_mean_weight
+    double max_weight = 0.0;                       // max over samples of the max channel of diffuse + specular weight
+    double mean_weight[3] = {0, 0, 0};             // per channel mean of the sample weights (invalid samples count 0)
+    double max_mean_weight = 0.0;                  // max channel of mean_weight: the directional albedo estimate
+    double mean_weight_standard_error = 0.0;       // of the channel reported in max_mean_weight
     std::vector<StabilityQueryRecord> violations;  // the first few non-finite, negative or non-unit outputs
 };
 
 struct StabilityPathResult
 {
-    std::string name;            // "cpu" or a GPU path, e.g. "slang-spirv"
+    std::string name;  // "cpu" or a GPU path, e.g. "slang-spirv"
     bool executed = false;
-    std::string note;            // the device, or why the path did not execute
+    std::string note;  // the device, or why the path did not execute
     std::size_t nonfinite = 0;
     std::size_t negative = 0;
     std::size_t bad_directions = 0;

@@ -47,8 +47,8 @@ CLI::App* add_bench_accuracy_subcommand(CLI::App& parent, const CommandContext&)
         bench = parent.add_subcommand("bench", "measurements of the BSDF's cost");
         bench->require_subcommand(1);
     }
-    CLI::App* command = bench->add_subcommand(
-        "accuracy", "error and time of every accuracy knob (docs/accuracy-vs-time.md)");
+    CLI::App* command =
+        bench->add_subcommand("accuracy", "error and time of every accuracy knob (docs/accuracy-vs-time.md)");
     auto settings = std::make_shared<AccuracyCommandSettings>();
     settings->cache_directory = default_cache_directory;
     settings->options.repository_root = repository_root;
@@ -59,13 +59,17 @@ CLI::App* add_bench_accuracy_subcommand(CLI::App& parent, const CommandContext&)
     command->add_option("--cache-dir", settings->cache_directory,
                         "ground-truth and table cache (default: the build directory's accuracy-cache)");
     command->add_option("--walk-paths", settings->options.walk_paths, "random-walk paths per ground-truth point")
-        ->capture_default_str()->check(CLI::Range(std::uint64_t(1), std::uint64_t(1) << 30));
+        ->capture_default_str()
+        ->check(CLI::Range(std::uint64_t(1), std::uint64_t(1) << 30));
     command->add_option("--albedo-samples", settings->options.albedo_samples, "BSDF samples per albedo estimate")
-        ->capture_default_str()->check(CLI::Range(1u, 1u << 24));
+        ->capture_default_str()
+        ->check(CLI::Range(1u, 1u << 24));
     command->add_option("--timing-queries", settings->options.timing_queries, "queries per timing batch")
-        ->capture_default_str()->check(CLI::Range(1u, 1u << 24));
+        ->capture_default_str()
+        ->check(CLI::Range(1u, 1u << 24));
     command->add_option("--table-samples", settings->options.table_samples, "samples per node of the 16/64 tables")
-        ->capture_default_str()->check(CLI::Range(1u, 1u << 24));
+        ->capture_default_str()
+        ->check(CLI::Range(1u, 1u << 24));
     command->add_flag("--no-compile", settings->no_compile, "skip the Slang compile-time rows");
     command->add_flag("--no-progress", settings->no_progress, "no progress bar on stderr");
     command->callback([settings]() {

@@ -41,8 +41,7 @@ CLI::App* add_bench_accuracy_subcommand(CLI::App& parent, const CommandContext& 
 
 // Runs `action` (returning the exit status) as a subcommand's callback: a non-zero status and
 // any std::exception become CLI::RuntimeError(status), which CLI11_PARSE returns from main().
-template <typename Action>
-void run_command(Action&& action)
+template <typename Action> void run_command(Action&& action)
 {
     int status = 0;
     try

@@ -14,7 +14,8 @@ CLI::App* add_compile_subcommand(CLI::App& parent, const CommandContext&)
     CLI::App* command =
         parent.add_subcommand("compile", "emit the shaders of every target (SPIR-V, HLSL, Metal, CUDA, GLSL)");
     command->add_option("--target", options->targets, "spirv, hlsl, metal, cuda, glsl or all")
-        ->delimiter(',')->check(CLI::IsMember({"spirv", "hlsl", "metal", "cuda", "glsl", "all"}));
+        ->delimiter(',')
+        ->check(CLI::IsMember({"spirv", "hlsl", "metal", "cuda", "glsl", "all"}));
     command->add_option("-o,--output-dir", options->output_directory, "output directory")->required();
     command->callback([options]() {
         run_command([&]() {

@@ -43,7 +43,8 @@ CLI::App* add_conformance_subcommand(CLI::App& parent, const CommandContext& con
 {
     auto settings = std::make_shared<ConformanceSettings>();
     CLI::App* command = parent.add_subcommand("conformance", "compare every GPU path with the CPU build");
-    command->add_option("--queries", settings->options.query_count, "number of queries")->capture_default_str()
+    command->add_option("--queries", settings->options.query_count, "number of queries")
+        ->capture_default_str()
         ->check(CLI::Range(std::size_t(1), std::size_t(100000000)));
     command->add_option("--seed", settings->options.seed, "random seed")->capture_default_str();
     command->add_option("--json", settings->json_path, "write the report as JSON");

@@ -27,8 +27,7 @@ void write_json(const std::string& path, const nlohmann::json& json)
 
 // Runs `body` as a subcommand (run_command); a FeatureError (a material needs a feature the
 // chosen pipeline lacks) exits with `refusal_code`.
-template <typename Body>
-void run_reporting_errors(Body body, int refusal_code)
+template <typename Body> void run_reporting_errors(Body body, int refusal_code)
 {
     run_command([&]() {
         try
@@ -59,8 +58,9 @@ CLI::App* add_features_subcommand(CLI::App& parent, const CommandContext& contex
         "features", "smallest feature-toggle set that renders the materials exactly, and its specialization info");
     command->add_option("files", features->files, "MaterialX files (default: every file of --materials-dir)");
     command->add_option("--json", features->json, "write the report as JSON");
-    command->add_option("--pipeline", features->pipeline,
-                        "check a pipeline's toggle set, e.g. coat,metal (exit 3 when a material needs more)")
+    command
+        ->add_option("--pipeline", features->pipeline,
+                     "check a pipeline's toggle set, e.g. coat,metal (exit 3 when a material needs more)")
         ->delimiter(',');
     command->callback([features, context]() {
         run_reporting_errors(
@@ -103,9 +103,11 @@ CLI::App* add_features_subcommand(CLI::App& parent, const CommandContext& contex
         bench_command->add_subcommand("specialization", "full versus specialized pipelines: lavapipe and CPU");
     specialization->add_option("--json", bench->json, "write the report as JSON");
     specialization->add_option("--queries", bench->options.gpu_queries, "lavapipe queries per scene and pipeline")
-        ->capture_default_str()->check(CLI::Range(std::size_t(64), std::size_t(10000000)));
+        ->capture_default_str()
+        ->check(CLI::Range(std::size_t(64), std::size_t(10000000)));
     specialization->add_option("--repeats", bench->options.gpu_repeats, "dispatches per pipeline (median of 2..n)")
-        ->capture_default_str()->check(CLI::Range(2, 100));
+        ->capture_default_str()
+        ->check(CLI::Range(2, 100));
     specialization->add_option("--path", bench->options.path, "GPU path, e.g. slang-spirv or glsl-spirv")
         ->capture_default_str();
     specialization->add_flag("--cpu-only", bench->cpu_only, "skip lavapipe");
@@ -137,9 +139,11 @@ CLI::App* add_features_subcommand(CLI::App& parent, const CommandContext& contex
         "gpu", "device-timed throughput of prepare+eval, sample, pdf per material class (Vulkan timestamps, CUDA events)");
     gpu_command->add_option("--json", gpu->json, "write the report as JSON");
     gpu_command->add_option("--queries", gpu->options.queries, "queries per class and kernel (e.g. 4096 on lavapipe)")
-        ->capture_default_str()->check(CLI::Range(std::size_t(64), std::size_t(100000000)));
+        ->capture_default_str()
+        ->check(CLI::Range(std::size_t(64), std::size_t(100000000)));
     gpu_command->add_option("--repeats", gpu->options.repeats, "dispatches per kernel (median of 2..n)")
-        ->capture_default_str()->check(CLI::Range(2, 1000));
+        ->capture_default_str()
+        ->check(CLI::Range(2, 1000));
     gpu_command->add_option("--path", gpu->options.path, "Vulkan path, e.g. slang-spirv or glsl-spirv")
         ->capture_default_str();
     gpu_command->add_flag("--no-vulkan", gpu->no_vulkan, "skip Vulkan");

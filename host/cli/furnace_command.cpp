@@ -40,9 +40,9 @@ int run_furnace(const FurnaceSettings& settings)
     {
         failures += row.within_tolerance ? 0 : 1;
     }
-    std::cout << rows.size() - failures << " of " << rows.size() << " within tolerance (|1 - albedo| <= "
-              << furnace_tolerance << " for cos >= " << furnace_tolerance_min_cos << ", albedo <= " << furnace_max_albedo
-              << " everywhere)\n";
+    std::cout << rows.size() - failures << " of " << rows.size()
+              << " within tolerance (|1 - albedo| <= " << furnace_tolerance << " for cos >= " << furnace_tolerance_min_cos
+              << ", albedo <= " << furnace_max_albedo << " everywhere)\n";
     return failures == 0 ? 0 : 2;
 }
 
@@ -54,7 +54,8 @@ CLI::App* add_furnace_subcommand(CLI::App& parent, const CommandContext&)
     CLI::App* command = parent.add_subcommand("furnace", "white furnace: directional albedo of white configurations");
     command->add_option("--json", settings->json_path, "write {\"configs\": [...]} to this file");
     command->add_option("--samples", settings->furnace.samples, "samples per configuration and view")
-        ->capture_default_str()->check(CLI::Range(std::uint64_t(1024), std::uint64_t(1) << 32));
+        ->capture_default_str()
+        ->check(CLI::Range(std::uint64_t(1024), std::uint64_t(1) << 32));
     command->add_option("--filter", settings->furnace.name_filter,
                         "only configurations whose name contains this, e.g. glass");
     command->callback([settings]() { run_command([&]() { return run_furnace(*settings); }); });

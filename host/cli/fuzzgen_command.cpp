@@ -29,11 +29,13 @@ CLI::App* add_fuzzgen_subcommand(CLI::App& parent, const CommandContext&)
 {
     auto settings = std::make_shared<FuzzgenSettings>();
     CLI::App* command = parent.add_subcommand("fuzzgen", "simulate the fuzz layer and fit its LTC table");
-    command->add_option("--photons", settings->options.photons, "photons per table cell")->capture_default_str()
+    command->add_option("--photons", settings->options.photons, "photons per table cell")
+        ->capture_default_str()
         ->check(CLI::Range(std::uint64_t(1024), std::uint64_t(1) << 34));
     command->add_option("--seed", settings->options.seed, "base seed of the per-cell streams")->capture_default_str();
-    command->add_option("-o,--output-dir", settings->output_directory,
-                        "where openpbr_fuzz_ltc_values.inc goes (the build derives openpbr_fuzz_ltc.bin from it)")
+    command
+        ->add_option("-o,--output-dir", settings->output_directory,
+                     "where openpbr_fuzz_ltc_values.inc goes (the build derives openpbr_fuzz_ltc.bin from it)")
         ->capture_default_str();
     command->add_flag("--progress", settings->options.progress, "print a progress line per 10 %");
     command->callback([settings]() {

@@ -30,20 +30,26 @@ CLI::App* add_lutgen_subcommand(CLI::App& parent, const CommandContext&)
     auto settings = std::make_shared<LutgenSettings>();
     CLI::App* command = parent.add_subcommand("lutgen", "generate the energy-compensation tables (Monte Carlo)");
     LutGeneratorOptions& options = settings->options;
-    command->add_option("--size-2d", options.size_2d, "nodes per axis of the 2D table")->capture_default_str()
+    command->add_option("--size-2d", options.size_2d, "nodes per axis of the 2D table")
+        ->capture_default_str()
         ->check(CLI::Range(2, 256));
     command->add_option("--size-3d", options.size_3d, "nodes on the view and roughness axes of the 3D tables")
-        ->capture_default_str()->check(CLI::Range(2, 128));
+        ->capture_default_str()
+        ->check(CLI::Range(2, 128));
     command->add_option("--size-3d-eta", options.size_3d_eta, "nodes on the eta axis of the 3D tables (even)")
-        ->capture_default_str()->check(CLI::Range(6, 128));
-    command->add_option("--samples", options.samples, "Monte Carlo samples per table cell")->capture_default_str()
+        ->capture_default_str()
+        ->check(CLI::Range(6, 128));
+    command->add_option("--samples", options.samples, "Monte Carlo samples per table cell")
+        ->capture_default_str()
         ->check(CLI::Range(1u, 1u << 30));
     command->add_option("--bits", options.bits, "32 (float) or 16 (values rounded to half precision)")
-        ->capture_default_str()->check(CLI::IsMember({16, 32}));
+        ->capture_default_str()
+        ->check(CLI::IsMember({16, 32}));
     command->add_option("--seed", options.seed, "0 = the shipped tables; others give independent replicas")
         ->capture_default_str();
-    command->add_option("-o,--output-dir", settings->output_directory,
-                        "where openpbr_lut_values.inc goes (the build derives openpbr_lut.bin from it)")
+    command
+        ->add_option("-o,--output-dir", settings->output_directory,
+                     "where openpbr_lut_values.inc goes (the build derives openpbr_lut.bin from it)")
         ->capture_default_str();
     command->add_flag("--progress", options.progress_always, "print progress even when stderr is not a terminal");
     command->callback([settings]() {

@@ -19,7 +19,8 @@
 
 namespace openpbr::host {
 
-struct RenderCommandOptions {
+struct RenderCommandOptions
+{
     std::string backend = "cpu";
     std::vector<std::string> material_files;
     bool gallery = false;
@@ -42,13 +43,15 @@ struct RenderCommandOptions {
 
 namespace {
 
-std::string stem_of(const std::string& path) {
+std::string stem_of(const std::string& path)
+{
     const std::size_t slash = path.find_last_of('/');
     const std::size_t dot = path.find_last_of('.');
     return (dot != std::string::npos && (slash == std::string::npos || dot > slash)) ? path.substr(0, dot) : path;
 }
 
-nlohmann::json describe_render(const RenderImage& image, RenderBackend backend) {
+nlohmann::json describe_render(const RenderImage& image, RenderBackend backend)
+{
     return {{"backend", to_string(backend)},
             {"device", image.device},
             {"width", image.width},
@@ -61,22 +64,24 @@ nlohmann::json describe_render(const RenderImage& image, RenderBackend backend) 
             {"nonfinite_samples", image.nonfinite_samples}};
 }
 
-void print_render(const RenderImage& image, RenderBackend backend) {
+void print_render(const RenderImage& image, RenderBackend backend)
+{
     std::printf("%s (%s): %dx%d px, %d spp, %.2f s (first pass %.2f s), %.0f ns per pixel-sample, "
                 "%llu non-finite samples\n",
-                to_string(backend), image.device.c_str(), image.width, image.height, image.samples_per_pixel,
-                image.seconds, image.first_pass_seconds, image.ns_per_pixel_sample,
+                to_string(backend), image.device.c_str(), image.width, image.height, image.samples_per_pixel, image.seconds,
+                image.first_pass_seconds, image.ns_per_pixel_sample,
                 static_cast<unsigned long long>(image.nonfinite_samples));
 }
 
 // Cell size from --size WxH: the largest square cells of the layout that fit.
-int cell_from_size(const std::string& size, std::size_t count, int columns) {
+int cell_from_size(const std::string& size, std::size_t count, int columns)
+{
     int width = 0;
     int height = 0;
     char separator = 0;
     std::istringstream stream(size);
-    if (!(stream >> width >> separator >> height) || (separator != 'x' && separator != 'X') || width < 8 ||
-        height < 8) {
+    if (!(stream >> width >> separator >> height) || (separator != 'x' && separator != 'X') || width < 8 || height < 8)
+    {
         throw std::invalid_argument("--size expects WxH, e.g. 1024x896, got '" + size + "'");
     }
     const int cols = columns > 0 ? columns : std::max(1, int(std::ceil(std::sqrt(double(count)) - 1e-9)));
@@ -91,12 +96,14 @@ int cell_from_size(const std::string& size, std::size_t count, int columns) {
 int run_render_command(const RenderCommandOptions& options, const std::string& materials_directory,
                        const std::string& kernel_directory);
 
-CLI::App* add_render_subcommand(CLI::App& parent, const CommandContext& context) {
+CLI::App* add_render_subcommand(CLI::App& parent, const CommandContext& context)
+{
     auto settings = std::make_shared<RenderCommandOptions>();
     RenderCommandOptions& options = *settings;
     CLI::App* render = parent.add_subcommand(
         "render", "path-trace a labelled gallery of material spheres (default: every bundled material)");
-    render->add_option("--backend", options.backend, "cpu or vulkan")->capture_default_str()
+    render->add_option("--backend", options.backend, "cpu or vulkan")
+        ->capture_default_str()
         ->check(CLI::IsMember({"cpu", "vulkan"}));
     render->add_option("--materials", options.material_files, "material files (default: the materials directory)");
     render->add_flag("--gallery", options.gallery,
@@ -123,37 +130,41 @@ CLI::App* add_render_subcommand(CLI::App& parent, const CommandContext& context)
     render->add_flag("--no-labels", options.no_labels, "no material names in the image");
     render->add_flag("--quiet", options.quiet, "no progress bar");
     render->add_option("--json", options.json, "write timings and checks as JSON");
-    render->add_option("-o,--output", options.output,
-                       "output PNG (default openpbr_gallery.png or openpbr_furnace.png)");
+    render->add_option("-o,--output", options.output, "output PNG (default openpbr_gallery.png or openpbr_furnace.png)");
     render->callback([settings, context]() {
-        run_command([&]() {
-            return run_render_command(*settings, context.materials_directory, context.kernel_directory);
-        });
+        run_command([&]() { return run_render_command(*settings, context.materials_directory, context.kernel_directory); });
     });
     return render;
 }
 
 int run_render_command(const RenderCommandOptions& options, const std::string& materials_directory,
-                       const std::string& kernel_directory) {
-    try {
+                       const std::string& kernel_directory)
+{
+    try
+    {
         // One cell per material; the gallery ends with the nested-media scenes, made of the
         // bundled Glass and the built-in water and air (host/preview/render.h).
         std::vector<Material> materials;
-        const bool whole_gallery = !options.furnace && !options.nested &&
-                                   (options.gallery || options.material_files.empty());
-        if (options.furnace && !options.nested) {
+        const bool whole_gallery =
+            !options.furnace && !options.nested && (options.gallery || options.material_files.empty());
+        if (options.furnace && !options.nested)
+        {
             materials = furnace_materials();
-        } else if (whole_gallery) {
+        }
+        else if (whole_gallery)
+        {
             materials = load_material_directory(materials_directory);
         }
-        for (const std::string& file : options.material_files) {
+        for (const std::string& file : options.material_files)
+        {
             const std::vector<Material> loaded = load_materialx_file(file);
             materials.insert(materials.end(), loaded.begin(), loaded.end());
         }
         std::vector<RenderCell> cells = material_cells(materials);
-        if (options.nested || whole_gallery) {
-            const std::vector<RenderCell> nested =
-                nested_media_cells(load_materialx_file(materials_directory + "/open_pbr_glass.mtlx").front(), options.furnace);
+        if (options.nested || whole_gallery)
+        {
+            const std::vector<RenderCell> nested = nested_media_cells(
+                load_materialx_file(materials_directory + "/open_pbr_glass.mtlx").front(), options.furnace);
             cells.insert(cells.end(), nested.begin(), nested.end());
         }
 
@@ -181,7 +192,8 @@ int run_render_command(const RenderCommandOptions& options, const std::string& m
             nlohmann::json spheres = nlohmann::json::array();
             std::printf("furnace (%s): environment %.3f, mean over each sphere's fully covered pixels:\n", name.c_str(),
                         settings.environment);
-            for (const SphereStatistics& entry : statistics) {
+            for (const SphereStatistics& entry : statistics)
+            {
                 const bool pass = entry.relative_error <= 0.01 && entry.pixels > 0;
                 status = pass ? status : 1;
                 std::printf("  %-18s %.4f %.4f %.4f  error %.2f %%  (%zu px)  %s\n", entry.label.c_str(), entry.mean[0],
@@ -195,7 +207,8 @@ int run_render_command(const RenderCommandOptions& options, const std::string& m
             report["furnace"][name] = spheres;
         };
 
-        if (options.compare) {
+        if (options.compare)
+        {
             RenderSettings cpu_settings = settings;
             cpu_settings.progress_label = "cpu   ";
             RenderSettings vulkan_settings = settings;
@@ -212,8 +225,8 @@ int run_render_command(const RenderCommandOptions& options, const std::string& m
             write_render_png(output, cpu, options.exposure, labels);
             write_render_png(vulkan_path, vulkan, options.exposure, labels);
             write_difference_png(difference_path, cpu, vulkan, options.difference_scale);
-            const bool pass = comparison.rmse < comparison.noise && comparison.nonfinite_a == 0 &&
-                              comparison.nonfinite_b == 0;
+            const bool pass =
+                comparison.rmse < comparison.noise && comparison.nonfinite_a == 0 && comparison.nonfinite_b == 0;
             status = pass ? 0 : 1;
             std::printf("compare: RMSE(cpu - vulkan) %.6g, Monte Carlo noise (RMS standard error) %.6g, ratio %.3f, "
                         "max |diff| %.4g, identical pixels %.2f %%, non-finite cpu %llu vulkan %llu: %s\n",
@@ -228,14 +241,14 @@ int run_render_command(const RenderCommandOptions& options, const std::string& m
                                  {"max_abs_difference", comparison.max_abs_difference},
                                  {"identical_fraction", comparison.identical_fraction},
                                  {"pass", pass}};
-            if (options.furnace) {
+            if (options.furnace)
+            {
                 furnace_check(cpu, "cpu");
                 furnace_check(vulkan, "vulkan");
             }
             write_json_file(json_path, report);
-            std::printf("wrote %s (cpu), %s (vulkan), %s (|cpu - vulkan| x %g), %s\n", output.c_str(),
-                        vulkan_path.c_str(), difference_path.c_str(), double(options.difference_scale),
-                        json_path.c_str());
+            std::printf("wrote %s (cpu), %s (vulkan), %s (|cpu - vulkan| x %g), %s\n", output.c_str(), vulkan_path.c_str(),
+                        difference_path.c_str(), double(options.difference_scale), json_path.c_str());
             return status;
         }
 
@@ -247,12 +260,15 @@ int run_render_command(const RenderCommandOptions& options, const std::string& m
         if (options.furnace) furnace_check(image, to_string(backend));
         write_render_png(output, image, options.exposure, labels);
         std::printf("wrote %s\n", output.c_str());
-        if (!options.json.empty()) {
+        if (!options.json.empty())
+        {
             write_json_file(options.json, report);
             std::printf("wrote %s\n", options.json.c_str());
         }
         return status;
-    } catch (const std::exception& error) {
+    }
+    catch (const std::exception& error)
+    {
         std::cerr << "openpbr render: error: " << error.what() << "\n";
         return 1;
     }

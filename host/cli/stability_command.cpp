@@ -38,9 +38,12 @@ CLI::App* add_stability_subcommand(CLI::App& parent, const CommandContext& conte
         "stability", "hard-case corpus on the CPU build and every GPU path: non-finite, negative, energy gain");
     command->add_option("--corpus", settings->corpus, "stability corpus (JSON)")->capture_default_str();
     command->add_option("--samples", settings->options.samples_per_case, "extra samples per case")
-        ->capture_default_str()->check(CLI::Range(std::size_t(0), std::size_t(100000000)));
-    command->add_option("--gpu-samples", settings->options.gpu_samples_per_case,
-                        "samples per case on GPU paths (0 = --samples)")->capture_default_str();
+        ->capture_default_str()
+        ->check(CLI::Range(std::size_t(0), std::size_t(100000000)));
+    command
+        ->add_option("--gpu-samples", settings->options.gpu_samples_per_case,
+                     "samples per case on GPU paths (0 = --samples)")
+        ->capture_default_str();
     command->add_option("--seed", settings->options.seed, "random seed")->capture_default_str();
     command->add_option("--paths", settings->options.paths, "paths to run: cpu and GPU paths (default: all)");
     command->add_option("--json", settings->json, "write the report as JSON");

@@ -103,7 +103,8 @@ std::vector<std::string> slang_command(const CompileTargetsOptions& options, con
 {
     std::vector<std::string> command =
         options.slangc.empty()
-            ? std::vector<std::string>{options.node, (fs::path(options.source_directory) / "targets" / "slangc.mjs").string(), "-q"}
+            ? std::vector<std::string>{options.node,
+                                       (fs::path(options.source_directory) / "targets" / "slangc.mjs").string(), "-q"}
             : std::vector<std::string>{options.slangc};
     command.insert(command.end(), {"-target", target});
     // Feature toggles (slang/openpbr_features.h): Slang turns specialization constants into
@@ -160,7 +161,8 @@ std::vector<CompiledFile> compile_targets(const CompileTargetsOptions& options)
     std::vector<std::string> targets;
     for (const std::string& target : options.targets.empty() ? std::vector<std::string>{"all"} : options.targets)
     {
-        const std::vector<std::string> expanded = target == "all" ? compile_target_names() : std::vector<std::string>{target};
+        const std::vector<std::string> expanded =
+            target == "all" ? compile_target_names() : std::vector<std::string>{target};
         for (const std::string& name : expanded)
         {
             extension_of(name);
@@ -200,15 +202,17 @@ std::vector<CompiledFile> compile_targets(const CompileTargetsOptions& options)
             const fs::path library_in = source / "targets" / "hlsl" / "openpbr.hlsl.in";
             const fs::path library_out = directory / "openpbr.hlsl";
             files.push_back(record(target, "HLSL library (headers, flattened)", library_out,
-                                   run_command({options.node, generator.string(), "-preset", "hlsl", "-I", slang_dir.string(),
-                                                "-o", library_out.string(), library_in.string()})));
+                                   run_command({options.node, generator.string(), "-preset", "hlsl", "-I",
+                                                slang_dir.string(), "-o", library_out.string(), library_in.string()})));
             const fs::path body_out = directory / "openpbr_conformance_kernel.hlsl";
-            files.push_back(record(target, "conformance kernel body for the HLSL library", body_out,
-                                   run_command({options.node, generator.string(), "-preset", "hlsl", "-I", slang_dir.string(),
-                                                "-provided", library_in.string(), "-o", body_out.string(),
-                                                (source / "targets" / "kernels" / "openpbr_conformance_kernel.h").string()})));
+            files.push_back(
+                record(target, "conformance kernel body for the HLSL library", body_out,
+                       run_command({options.node, generator.string(), "-preset", "hlsl", "-I", slang_dir.string(),
+                                    "-provided", library_in.string(), "-o", body_out.string(),
+                                    (source / "targets" / "kernels" / "openpbr_conformance_kernel.h").string()})));
             const fs::path kernel_copy = directory / "conformance.hlsl";
-            fs::copy_file(source / "targets" / "hlsl" / "conformance.hlsl", kernel_copy, fs::copy_options::overwrite_existing);
+            fs::copy_file(source / "targets" / "hlsl" / "conformance.hlsl", kernel_copy,
+                          fs::copy_options::overwrite_existing);
             files.push_back(record(target, "conformance kernel over the HLSL library", kernel_copy, 0.0));
         }
     }

@@ -96,9 +96,8 @@ std::string default_cuda_conformance_program()
     return OPENPBR_CUDA_CONFORMANCE_PROGRAM;
 }
 
-std::vector<ExternalPathResult> run_cuda_conformance_program(const std::string& program,
-                                                            const std::vector<float>& queries,
-                                                            const std::vector<float>& materials)
+std::vector<ExternalPathResult> run_cuda_conformance_program(const std::string& program, const std::vector<float>& queries,
+                                                             const std::vector<float>& materials)
 {
     if (program.empty())
     {

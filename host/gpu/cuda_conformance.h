@@ -19,10 +19,10 @@ void write_conformance_inputs(const std::string& directory, const std::vector<fl
 
 struct ExternalPathResult
 {
-    std::string name;           // "cuda" or "slang-cuda"
+    std::string name;  // "cuda" or "slang-cuda"
     bool executed = false;
-    std::string note;           // the program's line, e.g. "skipped: no CUDA device (...)"
-    std::vector<float> results; // when executed: OPENPBR_RESULT_FLOATS per query
+    std::string note;            // the program's line, e.g. "skipped: no CUDA device (...)"
+    std::vector<float> results;  // when executed: OPENPBR_RESULT_FLOATS per query
     // Kernel times the program measured with CUDA events (ns per query, median of 5 after a
     // warm-up): "all" (the conformance kernel), "eval", "sample", "pdf" (prepare plus one).
     std::map<std::string, double> device_ns_per_query;
@@ -36,8 +36,7 @@ std::string default_cuda_conformance_program();
 // Runs the program on a batch in a fresh temporary directory; one entry per CUDA path, in the
 // order cuda, slang-cuda. A missing program, no device (exit 77) or an error gives entries with
 // executed = false and the reason in note; never throws for those.
-std::vector<ExternalPathResult> run_cuda_conformance_program(const std::string& program,
-                                                            const std::vector<float>& queries,
-                                                            const std::vector<float>& materials);
+std::vector<ExternalPathResult> run_cuda_conformance_program(const std::string& program, const std::vector<float>& queries,
+                                                             const std::vector<float>& materials);
 
 }  // namespace openpbr::host

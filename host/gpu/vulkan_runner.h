@@ -43,7 +43,8 @@
 
 namespace openpbr::host {
 
-struct VulkanOptions {
+struct VulkanOptions
+{
     // Enables VK_LAYER_KHRONOS_validation and a debug messenger that collects warnings and
     // errors (see VulkanContext::validation_messages). If the layer is not installed, a
     // warning is printed once per process to stderr and the context is created without it.
@@ -54,7 +55,8 @@ struct VulkanOptions {
 };
 
 // One buffer bound to the pipeline's descriptor set 0.
-struct BufferBinding {
+struct BufferBinding
+{
     uint32_t binding = 0;
     // Bytes uploaded before the dispatch. May be null or empty: the buffer is then still
     // created (at least 16 bytes, zero-filled) because Vulkan forbids zero-sized buffers.
@@ -75,7 +77,8 @@ struct BufferBinding {
 };
 
 // The descriptor layout of one binding, as the pipeline is created with it.
-struct BindingLayout {
+struct BindingLayout
+{
     uint32_t binding = 0;
     bool uniform = false;
     bool sampled_image = false;  // a combined image sampler (BufferBinding::image_width > 0)
@@ -83,20 +86,21 @@ struct BindingLayout {
 
 // A specialization constant as its 32-bit pattern. Every scalar kind that GLSL/Slang allow
 // for constant_id (bool as VkBool32, int, uint, float) is 4 bytes, so one word suffices.
-struct SpecializationConstant {
+struct SpecializationConstant
+{
     uint32_t id = 0;
     uint32_t value_bits = 0;
 
-    static SpecializationConstant of_bool(uint32_t id, bool value) {
-        return {id, value ? VK_TRUE : VK_FALSE};
-    }
+    static SpecializationConstant of_bool(uint32_t id, bool value) { return {id, value ? VK_TRUE : VK_FALSE}; }
     static SpecializationConstant of_uint(uint32_t id, uint32_t value) { return {id, value}; }
-    static SpecializationConstant of_int(uint32_t id, int32_t value) {
+    static SpecializationConstant of_int(uint32_t id, int32_t value)
+    {
         uint32_t bits = 0;
         std::memcpy(&bits, &value, sizeof bits);
         return {id, bits};
     }
-    static SpecializationConstant of_float(uint32_t id, float value) {
+    static SpecializationConstant of_float(uint32_t id, float value)
+    {
         static_assert(sizeof(float) == sizeof(uint32_t), "float must be 32-bit");
         uint32_t bits = 0;
         std::memcpy(&bits, &value, sizeof bits);
@@ -104,7 +108,8 @@ struct SpecializationConstant {
     }
 };
 
-struct DispatchTiming {
+struct DispatchTiming
+{
     double pipeline_create_ms = 0.0;  // vkCreateComputePipelines (lavapipe defers codegen)
     double first_dispatch_ms = 0.0;   // submit to fence signalled; includes llvmpipe's JIT
     // Median over dispatches 2..repeats. With repeats == 1 there is no steady-state sample
@@ -120,7 +125,8 @@ struct DispatchTiming {
 
 // One statistic a driver reports for a pipeline (VK_KHR_pipeline_executable_properties), e.g.
 // {"<executable>: Register count", 96}.
-struct PipelineStatistic {
+struct PipelineStatistic
+{
     std::string name;
     double value = 0.0;
 };
@@ -128,12 +134,12 @@ struct PipelineStatistic {
 struct ContextState;   // defined in vulkan_runner.cpp
 struct PipelineState;  // defined in vulkan_runner.cpp
 
-class VulkanContext {
-public:
+class VulkanContext
+{
+  public:
     // Returns nullopt (and a one-line reason in *error_message, if given) when no usable
     // device exists or any step of instance/device creation fails. Never throws for that.
-    static std::optional<VulkanContext> create(const VulkanOptions& options,
-                                               std::string* error_message);
+    static std::optional<VulkanContext> create(const VulkanOptions& options, std::string* error_message);
 
     VulkanContext(VulkanContext&&) noexcept;
     VulkanContext& operator=(VulkanContext&&) noexcept;
@@ -159,12 +165,13 @@ public:
     // that the device outlives every pipeline made from it.
     const std::shared_ptr<ContextState>& state() const { return state_; }
 
-private:
+  private:
     explicit VulkanContext(std::shared_ptr<ContextState> state);
     std::shared_ptr<ContextState> state_;
 };
 
-struct ComputePipelineDescription {
+struct ComputePipelineDescription
+{
     std::vector<uint32_t> spirv_words;
     std::string entry_point = "main";
     std::vector<SpecializationConstant> specialization_constants;
@@ -173,8 +180,9 @@ struct ComputePipelineDescription {
     uint32_t push_constant_size = 0;  // bytes, multiple of 4; 0 = no push constants
 };
 
-class ComputePipeline {
-public:
+class ComputePipeline
+{
+  public:
     // Throws std::runtime_error on invalid descriptions or failing Vulkan calls. The
     // pipeline keeps the context's device alive, so it may outlive the VulkanContext object.
     ComputePipeline(const VulkanContext& context, const ComputePipelineDescription& description);
@@ -196,11 +204,12 @@ public:
     // Implementation detail, public only for run().
     PipelineState& state() const { return *state_; }
 
-private:
+  private:
     std::unique_ptr<PipelineState> state_;
 };
 
-struct DispatchRequest {
+struct DispatchRequest
+{
     uint32_t groups_x = 1;
     uint32_t groups_y = 1;
     uint32_t groups_z = 1;
@@ -217,11 +226,9 @@ struct DispatchRequest {
 // Uploads every buffer, dispatches `repeats` times and copies read_back buffers back into
 // their vectors. `buffers` must cover exactly the pipeline's bindings, with matching kinds.
 // Throws std::runtime_error on mismatches and failing Vulkan calls.
-DispatchTiming run(ComputePipeline& pipeline, const std::vector<BufferBinding>& buffers,
-                   const DispatchRequest& request);
-DispatchTiming run(ComputePipeline& pipeline, const std::vector<BufferBinding>& buffers,
-                   uint32_t groups_x, uint32_t groups_y = 1, uint32_t groups_z = 1,
-                   int repeats = 1);
+DispatchTiming run(ComputePipeline& pipeline, const std::vector<BufferBinding>& buffers, const DispatchRequest& request);
+DispatchTiming run(ComputePipeline& pipeline, const std::vector<BufferBinding>& buffers, uint32_t groups_x,
+                   uint32_t groups_y = 1, uint32_t groups_z = 1, int repeats = 1);
 
 // The layout a pipeline needs for these buffers (binding index and kind of each).
 std::vector<BindingLayout> binding_layouts_of(const std::vector<BufferBinding>& buffers);
@@ -234,21 +241,21 @@ std::vector<uint32_t> load_spirv_file(const std::string& path);
 const char* vk_result_name(VkResult result);
 
 // Byte views of trivially copyable element vectors, for BufferBinding::data.
-template <class Element>
-std::vector<std::byte> to_bytes(const std::vector<Element>& elements) {
+template <class Element> std::vector<std::byte> to_bytes(const std::vector<Element>& elements)
+{
     static_assert(std::is_trivially_copyable_v<Element>, "elements are copied as bytes");
     std::vector<std::byte> bytes(elements.size() * sizeof(Element));
     if (!bytes.empty()) std::memcpy(bytes.data(), elements.data(), bytes.size());
     return bytes;
 }
 
-template <class Element>
-std::vector<Element> from_bytes(const std::vector<std::byte>& bytes) {
+template <class Element> std::vector<Element> from_bytes(const std::vector<std::byte>& bytes)
+{
     static_assert(std::is_trivially_copyable_v<Element>, "elements are copied as bytes");
-    if (bytes.size() % sizeof(Element) != 0) {
+    if (bytes.size() % sizeof(Element) != 0)
+    {
         throw std::runtime_error("from_bytes: " + std::to_string(bytes.size()) +
-                                 " bytes is not a whole number of elements of size " +
-                                 std::to_string(sizeof(Element)));
+                                 " bytes is not a whole number of elements of size " + std::to_string(sizeof(Element)));
     }
     std::vector<Element> elements(bytes.size() / sizeof(Element));
     if (!bytes.empty()) std::memcpy(elements.data(), bytes.data(), bytes.size());

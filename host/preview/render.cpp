@@ -48,33 +48,35 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-double seconds_since(Clock::time_point start) {
-    return std::chrono::duration<double>(Clock::now() - start).count();
-}
+double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
 std::mutex render_mutex;
 
 // ---- Scene -----------------------------------------------------------------------------------
 
-struct Vec3 {
+struct Vec3
+{
     float x, y, z;
 };
 
 Vec3 operator-(Vec3 a, Vec3 b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
 Vec3 operator*(Vec3 a, float s) { return {a.x * s, a.y * s, a.z * s}; }
 Vec3 cross(Vec3 a, Vec3 b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
-Vec3 normalized(Vec3 a) {
+Vec3 normalized(Vec3 a)
+{
     const float length = std::sqrt(a.x * a.x + a.y * a.y + a.z * a.z);
     return a * (1.0f / length);
 }
 
-void put3(std::vector<float>& scene, int index, Vec3 value) {
+void put3(std::vector<float>& scene, int index, Vec3 value)
+{
     scene[std::size_t(index)] = value.x;
     scene[std::size_t(index) + 1] = value.y;
     scene[std::size_t(index) + 2] = value.z;
 }
 
-struct Layout {
+struct Layout
+{
     int columns = 1;
     int rows = 1;
     int cell = 1;
@@ -82,15 +84,16 @@ struct Layout {
     int height = 1;
 };
 
-Layout make_layout(std::size_t material_count, const RenderSettings& settings) {
+Layout make_layout(std::size_t material_count, const RenderSettings& settings)
+{
     if (material_count == 0) throw std::invalid_argument("render: nothing to render (no materials or cells)");
-    if (settings.cell_size < 8 || settings.cell_size > 4096) {
+    if (settings.cell_size < 8 || settings.cell_size > 4096)
+    {
         throw std::invalid_argument("render: cell size must be in [8, 4096], got " + std::to_string(settings.cell_size));
     }
     Layout layout;
-    layout.columns = settings.columns > 0
-                         ? settings.columns
-                         : std::max(1, int(std::ceil(std::sqrt(double(material_count)) - 1e-9)));
+    layout.columns =
+        settings.columns > 0 ? settings.columns : std::max(1, int(std::ceil(std::sqrt(double(material_count)) - 1e-9)));
     layout.columns = std::min<int>(layout.columns, int(material_count));
     layout.rows = int((material_count + std::size_t(layout.columns) - 1) / std::size_t(layout.columns));
     layout.cell = settings.cell_size;
@@ -100,7 +103,8 @@ Layout make_layout(std::size_t material_count, const RenderSettings& settings) {
 }
 
 std::vector<std::uint32_t> make_parameters(const Layout& layout, std::size_t cell_count, std::size_t material_count,
-                                           const RenderSettings& settings) {
+                                           const RenderSettings& settings)
+{
     std::vector<std::uint32_t> parameters(OPENPBR_RENDER_PARAMETER_COUNT, 0u);
     parameters[OPENPBR_RENDER_PARAMETER_WIDTH] = std::uint32_t(layout.width);
     parameters[OPENPBR_RENDER_PARAMETER_HEIGHT] = std::uint32_t(layout.height);
@@ -109,32 +113,36 @@ std::vector<std::uint32_t> make_parameters(const Layout& layout, std::size_t cel
     parameters[OPENPBR_RENDER_PARAMETER_COLUMNS] = std::uint32_t(layout.columns);
     parameters[OPENPBR_RENDER_PARAMETER_CELL_COUNT] = std::uint32_t(cell_count);
     parameters[OPENPBR_RENDER_PARAMETER_GROUND_MATERIAL] = std::uint32_t(material_count);
-    parameters[OPENPBR_RENDER_PARAMETER_FLAGS] =
-        settings.furnace ? 0u
-                         : (OPENPBR_RENDER_FLAG_GROUND | OPENPBR_RENDER_FLAG_SKY |
-                            (settings.area_light ? OPENPBR_RENDER_FLAG_LIGHT : 0u));
+    parameters[OPENPBR_RENDER_PARAMETER_FLAGS] = settings.furnace ? 0u
+                                                                  : (OPENPBR_RENDER_FLAG_GROUND | OPENPBR_RENDER_FLAG_SKY |
+                                                                     (settings.area_light ? OPENPBR_RENDER_FLAG_LIGHT : 0u));
     parameters[OPENPBR_RENDER_PARAMETER_MAX_DEPTH] = std::uint32_t(std::max(settings.max_depth, 1));
     parameters[OPENPBR_RENDER_PARAMETER_MAX_VOLUME_EVENTS] = std::uint32_t(std::max(settings.max_volume_events, 0));
     parameters[OPENPBR_RENDER_PARAMETER_RR_DEPTH] = std::uint32_t(std::max(settings.roulette_depth, 1));
     return parameters;
 }
 
-void check_cell(const RenderCell& cell) {
+void check_cell(const RenderCell& cell)
+{
     const std::string where = "render: cell '" + cell.label + "': ";
     if (cell.objects.empty()) throw std::invalid_argument(where + "no objects");
-    if (cell.objects.size() > std::size_t(kRenderMaxObjects)) {
+    if (cell.objects.size() > std::size_t(kRenderMaxObjects))
+    {
         throw std::invalid_argument(where + std::to_string(cell.objects.size()) + " objects, at most " +
                                     std::to_string(kRenderMaxObjects) + " (the medium stack has one bit per object)");
     }
-    for (const RenderObject& object : cell.objects) {
+    for (const RenderObject& object : cell.objects)
+    {
         const bool finite = std::isfinite(object.center[0]) && std::isfinite(object.center[1]) &&
                             std::isfinite(object.center[2]) && std::isfinite(object.radius);
-        if (!finite || !(object.radius > 0.0f)) {
+        if (!finite || !(object.radius > 0.0f))
+        {
             throw std::invalid_argument(where + "object '" + object.material.name +
                                         "' needs a finite center and a radius > 0");
         }
         // The kernel does not look for the ground from inside an object.
-        if (object.center[1] - object.radius < -1.0f - 1e-6f) {
+        if (object.center[1] - object.radius < -1.0f - 1e-6f)
+        {
             throw std::invalid_argument(where + "object '" + object.material.name + "' reaches below the ground (y = -1)");
         }
     }
@@ -144,10 +152,10 @@ void check_cell(const RenderCell& cell) {
 // ground y = -1, camera in front and a little above, the area light up and to the left, a
 // gradient sky with a warm glow round the light. Then the object records of every cell
 // (targets/kernels/openpbr_render_kernel.h), the k-th object overall carrying packed material k.
-std::vector<float> make_scene(const RenderSettings& settings, const std::vector<RenderCell>& cells) {
-    std::vector<float> scene(OPENPBR_RENDER_SCENE_COUNT +
-                                 cells.size() * OPENPBR_RENDER_MAX_OBJECTS * OPENPBR_RENDER_OBJECT_FLOATS,
-                             0.0f);
+std::vector<float> make_scene(const RenderSettings& settings, const std::vector<RenderCell>& cells)
+{
+    std::vector<float> scene(
+        OPENPBR_RENDER_SCENE_COUNT + cells.size() * OPENPBR_RENDER_MAX_OBJECTS * OPENPBR_RENDER_OBJECT_FLOATS, 0.0f);
     const Vec3 camera = {0.0f, 0.7f, 4.5f};
     const Vec3 target = {0.0f, -0.1f, 0.0f};
     const float tan_half_fov = 0.34f;  // the sphere fills about 70 % of the cell's height
@@ -177,11 +185,13 @@ std::vector<float> make_scene(const RenderSettings& settings, const std::vector<
     const glm::vec3 wavelengths = OPENPBR_DEFAULT_RGB_WAVELENGTHS_NM;
     put3(scene, OPENPBR_RENDER_SCENE_DEFAULT_WAVELENGTHS, {wavelengths.x, wavelengths.y, wavelengths.z});
     std::size_t material_index = 0;
-    for (std::size_t cell = 0; cell < cells.size(); ++cell) {
-        for (std::size_t slot = 0; slot < cells[cell].objects.size(); ++slot) {
+    for (std::size_t cell = 0; cell < cells.size(); ++cell)
+    {
+        for (std::size_t slot = 0; slot < cells[cell].objects.size(); ++slot)
+        {
             const RenderObject& object = cells[cell].objects[slot];
-            const int record = int(OPENPBR_RENDER_SCENE_COUNT + (cell * OPENPBR_RENDER_MAX_OBJECTS + slot) *
-                                                                     OPENPBR_RENDER_OBJECT_FLOATS);
+            const int record =
+                int(OPENPBR_RENDER_SCENE_COUNT + (cell * OPENPBR_RENDER_MAX_OBJECTS + slot) * OPENPBR_RENDER_OBJECT_FLOATS);
             const OpenPBR_ResolvedInputs& inputs = object.material.inputs;
             // The medium's IOR and volume as the BSDF sees them: after the input contract.
             const OpenPBR_ResolvedInputs contracted = openpbr_prepare_inputs(inputs);
@@ -191,7 +201,8 @@ std::vector<float> make_scene(const RenderSettings& settings, const std::vector<
             scene[std::size_t(record) + OPENPBR_RENDER_OBJECT_MATERIAL] = float(material_index++);
             scene[std::size_t(record) + OPENPBR_RENDER_OBJECT_MEDIUM_IOR] = contracted.specular_ior;
             scene[std::size_t(record) + OPENPBR_RENDER_OBJECT_ENCLOSES] = inputs.geometry_thin_walled ? 0.0f : 1.0f;
-            scene[std::size_t(record) + OPENPBR_RENDER_OBJECT_DISPERSIVE] = openpbr_needs_rgb_wavelengths(inputs) ? 1.0f : 0.0f;
+            scene[std::size_t(record) + OPENPBR_RENDER_OBJECT_DISPERSIVE] =
+                openpbr_needs_rgb_wavelengths(inputs) ? 1.0f : 0.0f;
             put3(scene, record + int(OPENPBR_RENDER_OBJECT_EXTINCTION),
                  {volume.extinction.x, volume.extinction.y, volume.extinction.z});
             put3(scene, record + int(OPENPBR_RENDER_OBJECT_ALBEDO), {volume.albedo.x, volume.albedo.y, volume.albedo.z});
@@ -204,19 +215,26 @@ std::vector<float> make_scene(const RenderSettings& settings, const std::vector<
 
 // ---- Progress ----------------------------------------------------------------------------------
 
-class ProgressBar {
-public:
+class ProgressBar
+{
+  public:
     ProgressBar(bool enabled, std::string label, std::uint64_t total)
         : enabled_(enabled), label_(std::move(label)), total_(std::max<std::uint64_t>(total, 1)),
-          terminal_(isatty(fileno(stderr)) != 0), start_(Clock::now()) {}
+          terminal_(isatty(fileno(stderr)) != 0), start_(Clock::now())
+    {
+    }
 
-    void update(std::uint64_t done) {
+    void update(std::uint64_t done)
+    {
         if (!enabled_) return;
         const double elapsed = seconds_since(start_);
         const double fraction = std::min(1.0, double(done) / double(total_));
-        if (terminal_) {
+        if (terminal_)
+        {
             if (done < total_ && elapsed - last_print_ < 0.2) return;
-        } else {
+        }
+        else
+        {
             // Not a terminal (a log): a line per quarter.
             const int quarter = int(fraction * 4.0);
             if (quarter <= last_quarter_ && done < total_) return;
@@ -229,16 +247,17 @@ public:
         bar.append(std::size_t(bar_width - filled), '-');
         char left[32] = "?";
         if (fraction > 0.0) std::snprintf(left, sizeof left, "%.1f s", elapsed * (1.0 - fraction) / fraction);
-        std::fprintf(stderr, "%s%s [%s] %5.1f %%  %.1f s elapsed, %s left%s", terminal_ ? "\r" : "",
-                     label_.c_str(), bar.c_str(), 100.0 * fraction, elapsed, left, terminal_ ? "   " : "\n");
+        std::fprintf(stderr, "%s%s [%s] %5.1f %%  %.1f s elapsed, %s left%s", terminal_ ? "\r" : "", label_.c_str(),
+                     bar.c_str(), 100.0 * fraction, elapsed, left, terminal_ ? "   " : "\n");
         std::fflush(stderr);
     }
 
-    void finish() {
+    void finish()
+    {
         if (enabled_ && terminal_) std::fprintf(stderr, "\n");
     }
 
-private:
+  private:
     bool enabled_;
     std::string label_;
     std::uint64_t total_;
@@ -250,7 +269,8 @@ private:
 
 // ---- Shared pieces of both backends --------------------------------------------------------
 
-struct PreparedRender {
+struct PreparedRender
+{
     Layout layout;
     std::vector<std::uint32_t> parameters;
     std::vector<float> scene;
@@ -259,12 +279,14 @@ struct PreparedRender {
     std::size_t pixel_count = 0;
 };
 
-PreparedRender prepare_render(const std::vector<RenderCell>& cells, const RenderSettings& settings) {
+PreparedRender prepare_render(const std::vector<RenderCell>& cells, const RenderSettings& settings)
+{
     if (settings.samples_per_pixel < 1) throw std::invalid_argument("render: samples per pixel must be >= 1");
     for (const RenderCell& cell : cells) check_cell(cell);
     PreparedRender prepared;
     std::vector<Material> packed;
-    for (const RenderCell& cell : cells) {
+    for (const RenderCell& cell : cells)
+    {
         for (const RenderObject& object : cell.objects) packed.push_back(object.material);
     }
     prepared.layout = make_layout(cells.size(), settings);
@@ -278,7 +300,8 @@ PreparedRender prepare_render(const std::vector<RenderCell>& cells, const Render
 }
 
 RenderImage finish_image(const PreparedRender& prepared, const std::vector<float>& accumulation,
-                         const RenderSettings& settings) {
+                         const RenderSettings& settings)
+{
     RenderImage image;
     image.width = prepared.layout.width;
     image.height = prepared.layout.height;
@@ -291,9 +314,11 @@ RenderImage finish_image(const PreparedRender& prepared, const std::vector<float
     image.variance_of_mean.assign(prepared.pixel_count * 3, 0.0f);
     image.object_fraction.assign(prepared.pixel_count, 0.0f);
     const double n = double(settings.samples_per_pixel);
-    for (std::size_t pixel = 0; pixel < prepared.pixel_count; ++pixel) {
+    for (std::size_t pixel = 0; pixel < prepared.pixel_count; ++pixel)
+    {
         const float* record = accumulation.data() + pixel * OPENPBR_RENDER_ACCUMULATION_FLOATS;
-        for (int channel = 0; channel < 3; ++channel) {
+        for (int channel = 0; channel < 3; ++channel)
+        {
             const double mean = double(record[channel]) / n;
             const double mean_square = double(record[3 + channel]) / n;
             // Unbiased sample variance, divided by n for the variance of the mean.
@@ -307,12 +332,14 @@ RenderImage finish_image(const PreparedRender& prepared, const std::vector<float
     return image;
 }
 
-int automatic_chunk(int samples_per_pixel) {
+int automatic_chunk(int samples_per_pixel)
+{
     // About 16 passes: frequent progress, negligible per-pass overhead.
     return std::max(1, samples_per_pixel / 16);
 }
 
-RenderImage render_cpu(const std::vector<RenderCell>& cells, const RenderSettings& settings) {
+RenderImage render_cpu(const std::vector<RenderCell>& cells, const RenderSettings& settings)
+{
     const Clock::time_point start = Clock::now();
     PreparedRender prepared = prepare_render(cells, settings);
     std::vector<float> accumulation(prepared.pixel_count * OPENPBR_RENDER_ACCUMULATION_FLOATS, 0.0f);
@@ -330,15 +357,18 @@ RenderImage render_cpu(const std::vector<RenderCell>& cells, const RenderSetting
                          std::uint64_t(spp));
     const Clock::time_point render_start = Clock::now();
     double first_pass = 0.0;
-    for (int begin = 0; begin < spp; begin += chunk) {
+    for (int begin = 0; begin < spp; begin += chunk)
+    {
         const Clock::time_point pass_start = Clock::now();
         const int end = std::min(spp, begin + chunk);
         prepared.parameters[OPENPBR_RENDER_PARAMETER_SAMPLE_BEGIN] = std::uint32_t(begin);
         prepared.parameters[OPENPBR_RENDER_PARAMETER_SAMPLE_END] = std::uint32_t(end);
         const tbb::blocked_range2d<int> range(0, prepared.layout.height, 8, 0, prepared.layout.width, 8);
         tbb::parallel_for(range, [](const tbb::blocked_range2d<int>& block) {
-            for (int y = block.rows().begin(); y < block.rows().end(); ++y) {
-                for (int x = block.cols().begin(); x < block.cols().end(); ++x) {
+            for (int y = block.rows().begin(); y < block.rows().end(); ++y)
+            {
+                for (int x = block.cols().begin(); x < block.cols().end(); ++x)
+                {
                     openpbr::openpbr_render_pixel(unsigned(x), unsigned(y));
                 }
             }
@@ -358,7 +388,8 @@ RenderImage render_cpu(const std::vector<RenderCell>& cells, const RenderSetting
     return image;
 }
 
-RenderImage render_vulkan(const std::vector<RenderCell>& cells, const RenderSettings& settings) {
+RenderImage render_vulkan(const std::vector<RenderCell>& cells, const RenderSettings& settings)
+{
     const Clock::time_point start = Clock::now();
     PreparedRender prepared = prepare_render(cells, settings);
     std::string error;
@@ -389,7 +420,8 @@ RenderImage render_vulkan(const std::vector<RenderCell>& cells, const RenderSett
     double steady_seconds = 0.0;
     int steady_samples = 0;
     int chunk = settings.chunk_samples > 0 ? settings.chunk_samples : 1;
-    for (int begin = 0; begin < spp;) {
+    for (int begin = 0; begin < spp;)
+    {
         const int end = std::min(spp, begin + chunk);
         prepared.parameters[OPENPBR_RENDER_PARAMETER_SAMPLE_BEGIN] = std::uint32_t(begin);
         prepared.parameters[OPENPBR_RENDER_PARAMETER_SAMPLE_END] = std::uint32_t(end);
@@ -400,19 +432,25 @@ RenderImage render_vulkan(const std::vector<RenderCell>& cells, const RenderSett
         const Clock::time_point pass_start = Clock::now();
         run(pipeline, buffers, groups_x, groups_y, 1, 1);
         const double pass_seconds = seconds_since(pass_start);
-        if (begin == 0) {
+        if (begin == 0)
+        {
             first_pass = pass_seconds;
-        } else {
+        }
+        else
+        {
             steady_seconds += pass_seconds;
             steady_samples += end - begin;
         }
         progress.update(std::uint64_t(end));
         begin = end;
-        if (settings.chunk_samples <= 0 && begin > 1) {
+        if (settings.chunk_samples <= 0 && begin > 1)
+        {
             // About two seconds per dispatch, from the passes after the first (which compiles).
             const double per_sample = steady_samples > 0 ? steady_seconds / steady_samples : pass_seconds;
             chunk = std::clamp(int(2.0 / std::max(per_sample, 1e-6)), 1, std::max(1, spp / 8));
-        } else if (settings.chunk_samples <= 0) {
+        }
+        else if (settings.chunk_samples <= 0)
+        {
             chunk = 1;  // the second pass measures the steady-state speed
         }
     }
@@ -431,25 +469,27 @@ RenderImage render_vulkan(const std::vector<RenderCell>& cells, const RenderSett
 
 }  // namespace
 
-const char* to_string(RenderBackend backend) {
-    return backend == RenderBackend::cpu ? "cpu" : "vulkan";
-}
+const char* to_string(RenderBackend backend) { return backend == RenderBackend::cpu ? "cpu" : "vulkan"; }
 
-bool vulkan_render_available(std::string* reason) {
+bool vulkan_render_available(std::string* reason)
+{
     std::string error;
     const std::optional<VulkanContext> context = VulkanContext::create(VulkanOptions{}, &error);
     if (!context && reason) *reason = error;
     return context.has_value();
 }
 
-RenderImage render_cells(const std::vector<RenderCell>& cells, const RenderSettings& settings, RenderBackend backend) {
+RenderImage render_cells(const std::vector<RenderCell>& cells, const RenderSettings& settings, RenderBackend backend)
+{
     return backend == RenderBackend::cpu ? render_cpu(cells, settings) : render_vulkan(cells, settings);
 }
 
-std::vector<RenderCell> material_cells(const std::vector<Material>& materials) {
+std::vector<RenderCell> material_cells(const std::vector<Material>& materials)
+{
     std::vector<RenderCell> cells;
     cells.reserve(materials.size());
-    for (const Material& material : materials) {
+    for (const Material& material : materials)
+    {
         RenderObject sphere;
         sphere.material = material;
         cells.push_back({material.name, {sphere}});
@@ -457,12 +497,13 @@ std::vector<RenderCell> material_cells(const std::vector<Material>& materials) {
     return cells;
 }
 
-RenderImage render_materials(const std::vector<Material>& materials, const RenderSettings& settings,
-                             RenderBackend backend) {
+RenderImage render_materials(const std::vector<Material>& materials, const RenderSettings& settings, RenderBackend backend)
+{
     return render_cells(material_cells(materials), settings, backend);
 }
 
-Material water_material(bool white) {
+Material water_material(bool white)
+{
     Material water = default_material();
     water.name = white ? "White water" : "Water";
     water.inputs.transmission_weight = 1.0f;
@@ -475,7 +516,8 @@ Material water_material(bool white) {
     return water;
 }
 
-Material air_material() {
+Material air_material()
+{
     Material air = default_material();
     air.name = "Air";
     air.inputs.transmission_weight = 1.0f;
@@ -487,11 +529,13 @@ Material air_material() {
     return air;
 }
 
-std::vector<RenderCell> nested_media_cells(const Material& glass, bool white) {
+std::vector<RenderCell> nested_media_cells(const Material& glass, bool white)
+{
     const Material water = water_material(white);
     RenderObject glass_shell;
     glass_shell.material = glass;
-    if (white) {
+    if (white)
+    {
         glass_shell.material.name = "White " + glass.name;
         glass_shell.material.inputs.base_color = glm::vec3(1.0f);
         glass_shell.material.inputs.specular_color = glm::vec3(1.0f);
@@ -515,7 +559,8 @@ std::vector<RenderCell> nested_media_cells(const Material& glass, bool white) {
     return {{"Glass of water", {glass_shell, water_inside}}, {"Air bubble in water", {water_sphere, bubble}}};
 }
 
-Material render_ground_material() {
+Material render_ground_material()
+{
     Material ground = default_material();
     ground.name = "Ground";
     ground.inputs.base_color = glm::vec3(0.5f);
@@ -523,7 +568,8 @@ Material render_ground_material() {
     return ground;
 }
 
-std::vector<Material> furnace_materials() {
+std::vector<Material> furnace_materials()
+{
     std::vector<Material> materials;
     auto white = [&](const std::string& name) -> OpenPBR_ResolvedInputs& {
         Material material = default_material();
@@ -563,47 +609,54 @@ std::vector<Material> furnace_materials() {
     return materials;
 }
 
-std::vector<SphereStatistics> sphere_statistics(const RenderImage& image, float reference) {
+std::vector<SphereStatistics> sphere_statistics(const RenderImage& image, float reference)
+{
     std::vector<SphereStatistics> statistics(image.labels.size());
-    for (std::size_t cell = 0; cell < image.labels.size(); ++cell) {
+    for (std::size_t cell = 0; cell < image.labels.size(); ++cell)
+    {
         SphereStatistics& entry = statistics[cell];
         entry.label = image.labels[cell];
         const int x0 = int(cell % std::size_t(image.columns)) * image.cell_size;
         const int y0 = int(cell / std::size_t(image.columns)) * image.cell_size;
         double sums[3] = {0.0, 0.0, 0.0};
-        for (int y = y0; y < y0 + image.cell_size; ++y) {
-            for (int x = x0; x < x0 + image.cell_size; ++x) {
+        for (int y = y0; y < y0 + image.cell_size; ++y)
+        {
+            for (int x = x0; x < x0 + image.cell_size; ++x)
+            {
                 const std::size_t pixel = std::size_t(y) * std::size_t(image.width) + std::size_t(x);
                 if (image.object_fraction[pixel] < 1.0f) continue;  // edge or background
                 for (int channel = 0; channel < 3; ++channel) sums[channel] += image.mean[pixel * 3 + std::size_t(channel)];
                 ++entry.pixels;
             }
         }
-        for (int channel = 0; channel < 3; ++channel) {
+        for (int channel = 0; channel < 3; ++channel)
+        {
             entry.mean[channel] = entry.pixels ? sums[channel] / double(entry.pixels) : 0.0;
-            entry.relative_error =
-                std::max(entry.relative_error, std::fabs(entry.mean[channel] / double(reference) - 1.0));
+            entry.relative_error = std::max(entry.relative_error, std::fabs(entry.mean[channel] / double(reference) - 1.0));
         }
     }
     return statistics;
 }
 
-RenderComparison compare_renders(const RenderImage& a, const RenderImage& b) {
+RenderComparison compare_renders(const RenderImage& a, const RenderImage& b)
+{
     if (a.width != b.width || a.height != b.height) throw std::invalid_argument("compare_renders: sizes differ");
     RenderComparison comparison;
     double squared = 0.0;
     double variance = 0.0;
     std::size_t identical = 0;
     const std::size_t pixels = std::size_t(a.width) * std::size_t(a.height);
-    for (std::size_t pixel = 0; pixel < pixels; ++pixel) {
+    for (std::size_t pixel = 0; pixel < pixels; ++pixel)
+    {
         bool same = true;
-        for (std::size_t channel = 0; channel < 3; ++channel) {
+        for (std::size_t channel = 0; channel < 3; ++channel)
+        {
             const double va = a.mean[pixel * 3 + channel];
             const double vb = b.mean[pixel * 3 + channel];
             const double difference = va - vb;
             squared += difference * difference;
-            variance += 0.5 * (double(a.variance_of_mean[pixel * 3 + channel]) +
-                               double(b.variance_of_mean[pixel * 3 + channel]));
+            variance +=
+                0.5 * (double(a.variance_of_mean[pixel * 3 + channel]) + double(b.variance_of_mean[pixel * 3 + channel]));
             comparison.max_abs_difference = std::max(comparison.max_abs_difference, std::fabs(difference));
             same = same && std::fabs(difference) <= 1e-4 * std::max({std::fabs(va), std::fabs(vb), 1e-3});
         }

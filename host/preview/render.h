@@ -23,13 +23,18 @@ namespace openpbr::host {
 
 constexpr float kNitsToRenderUnits = 0.01f;
 
-enum class RenderBackend { cpu, vulkan };
+enum class RenderBackend
+{
+    cpu,
+    vulkan
+};
 
 const char* to_string(RenderBackend backend);
 
-struct RenderSettings {
-    int cell_size = 128;           // pixels per (square) cell, one material per cell
-    int columns = 0;               // 0: chosen from the material count (about 8:7 for 55)
+struct RenderSettings
+{
+    int cell_size = 128;  // pixels per (square) cell, one material per cell
+    int columns = 0;      // 0: chosen from the material count (about 8:7 for 55)
     int samples_per_pixel = 32;
     std::uint32_t seed = 1;
     int max_depth = 8;             // surface scattering events
@@ -45,15 +50,16 @@ struct RenderSettings {
     std::string kernel_directory;  // where render.slang.spv is (Vulkan)
 };
 
-struct RenderImage {
+struct RenderImage
+{
     int width = 0;
     int height = 0;
     int cell_size = 0;
     int columns = 0;
     int rows = 0;
     int samples_per_pixel = 0;
-    std::vector<std::string> labels;    // one per cell with objects
-    std::vector<float> mean;            // linear RGB per pixel, row-major from the top
+    std::vector<std::string> labels;      // one per cell with objects
+    std::vector<float> mean;              // linear RGB per pixel, row-major from the top
     std::vector<float> variance_of_mean;  // per pixel and channel: sample variance / spp
     std::vector<float> object_fraction;   // per pixel: share of camera rays that hit an object
     std::uint64_t nonfinite_samples = 0;  // non-finite samples, replaced by 0
@@ -65,10 +71,11 @@ struct RenderImage {
 
 // One sphere of a cell, in the cell's coordinates: the ground is the plane y = -1 and the
 // camera frames the unit sphere at the origin (a plain gallery cell is that sphere alone).
-struct RenderObject {
+struct RenderObject
+{
     Material material;
     float center[3] = {0.0f, 0.0f, 0.0f};  // e.g. {0.2, 0.1, 0.3} for a bubble off the middle
-    float radius = 1.0f;                    // > 0, e.g. 0.9 for the water in a glass shell
+    float radius = 1.0f;                   // > 0, e.g. 0.9 for the water in a glass shell
 };
 
 // A cell of the image: its label and its objects, at most kRenderMaxObjects, listed from the
@@ -78,7 +85,8 @@ struct RenderObject {
 // transmission_color/depth or subsurface) and the medium around it, so its material is
 // prepared with that medium's IOR as exterior_ior. Thin-walled objects have no medium.
 // Example, water in a glass shell: {glass, radius 1}, {water, radius 0.9}.
-struct RenderCell {
+struct RenderCell
+{
     std::string label;
     std::vector<RenderObject> objects;
 };
@@ -95,8 +103,7 @@ RenderImage render_cells(const std::vector<RenderCell>& cells, const RenderSetti
 std::vector<RenderCell> material_cells(const std::vector<Material>& materials);
 
 // Renders material_cells(materials).
-RenderImage render_materials(const std::vector<Material>& materials, const RenderSettings& settings,
-                             RenderBackend backend);
+RenderImage render_materials(const std::vector<Material>& materials, const RenderSettings& settings, RenderBackend backend);
 
 // Water for the nested-media scenes: a smooth dielectric of IOR 1.33 with a faint blue-green
 // absorption (transmission_color 0.86/0.96/0.97 over transmission_depth 2, i.e. per two unit
@@ -129,7 +136,8 @@ Material render_ground_material();
 // surface with geometry_opacity 0.5.
 std::vector<Material> furnace_materials();
 
-struct SphereStatistics {
+struct SphereStatistics
+{
     std::string label;
     double mean[3] = {0.0, 0.0, 0.0};  // over the pixels fully covered by the sphere
     double relative_error = 0.0;       // max over channels of |mean / reference - 1|
@@ -139,11 +147,12 @@ struct SphereStatistics {
 // Mean radiance over each sphere's fully covered pixels, against a reference radiance.
 std::vector<SphereStatistics> sphere_statistics(const RenderImage& image, float reference);
 
-struct RenderComparison {
-    double rmse = 0.0;               // RMS over pixels and channels of a - b (linear)
-    double noise = 0.0;              // RMS standard error of one render (mean of both images' estimates)
+struct RenderComparison
+{
+    double rmse = 0.0;   // RMS over pixels and channels of a - b (linear)
+    double noise = 0.0;  // RMS standard error of one render (mean of both images' estimates)
     double max_abs_difference = 0.0;
-    double identical_fraction = 0.0; // pixels whose three channels agree to 1e-4 relative
+    double identical_fraction = 0.0;  // pixels whose three channels agree to 1e-4 relative
     std::uint64_t nonfinite_a = 0;
     std::uint64_t nonfinite_b = 0;
 };

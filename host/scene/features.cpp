@@ -123,8 +123,8 @@ void check_pipeline_supports(const std::vector<Material>& materials, std::uint32
                 features += (features.empty() ? "" : ", ") + name;
             }
             throw FeatureError("material '" + material.name + "'" +
-                               (material.file.empty() ? std::string() : " (" + material.file + ")") + " needs " +
-                               features + ", which the pipeline specialized to {" + feature_set_label(pipeline_mask) +
+                               (material.file.empty() ? std::string() : " (" + material.file + ")") + " needs " + features +
+                               ", which the pipeline specialized to {" + feature_set_label(pipeline_mask) +
                                "} switched off; refusing to render it without (use a pipeline with those features)");
         }
     }
@@ -161,17 +161,15 @@ nlohmann::json features_report_json(const std::vector<Material>& materials)
     nlohmann::json list = nlohmann::json::array();
     for (const Material& material : materials)
     {
-        list.push_back({{"name", material.name},
-                        {"file", material.file},
-                        {"toggles", feature_names(required_feature_mask(material))}});
+        list.push_back(
+            {{"name", material.name}, {"file", material.file}, {"toggles", feature_names(required_feature_mask(material))}});
     }
     const std::uint32_t scene = scene_feature_mask(materials);
     nlohmann::json constants = nlohmann::json::array();
     for (const FeatureToggle& toggle : feature_toggles())
     {
-        constants.push_back({{"name", toggle.constant_name},
-                             {"id", toggle.constant_id},
-                             {"value", (scene & toggle.bit) != 0}});
+        constants.push_back(
+            {{"name", toggle.constant_name}, {"id", toggle.constant_id}, {"value", (scene & toggle.bit) != 0}});
     }
     return {{"materials", list},
             {"toggles", feature_names(scene)},

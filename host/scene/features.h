@@ -56,7 +56,7 @@ std::uint32_t parse_feature_names(const std::vector<std::string>& names);
 // A material needs a feature the pipeline switched off.
 class FeatureError : public std::runtime_error
 {
-public:
+  public:
     explicit FeatureError(const std::string& message) : std::runtime_error(message) {}
     ~FeatureError() override;
 };
@@ -82,13 +82,13 @@ std::string features_report_text(const std::vector<Material>& materials);
 // restores the previous mask; not for use while other threads shade.
 class ScopedFeatureMask
 {
-public:
+  public:
     explicit ScopedFeatureMask(std::uint32_t mask);
     ~ScopedFeatureMask();
     ScopedFeatureMask(const ScopedFeatureMask&) = delete;
     ScopedFeatureMask& operator=(const ScopedFeatureMask&) = delete;
 
-private:
+  private:
     std::uint32_t previous_;
 };
 
@@ -96,7 +96,7 @@ private:
 // request for the same set returns the same pipeline without rebuilding.
 class SpecializedPipelineCache
 {
-public:
+  public:
     // `base` without specialization constants; the cache adds them per toggle set.
     SpecializedPipelineCache(const VulkanContext& context, ComputePipelineDescription base);
 
@@ -104,7 +104,7 @@ public:
     // How many pipelines were built so far (cache misses).
     std::size_t build_count() const { return build_count_; }
 
-private:
+  private:
     const VulkanContext* context_;
     ComputePipelineDescription base_;
     std::map<std::uint32_t, std::unique_ptr<ComputePipeline>> pipelines_;

@@ -41,14 +41,10 @@ const char* type_name(const ValueType type)
 {
     switch (type)
     {
-    case ValueType::float_value:
-        return "float";
-    case ValueType::color3_value:
-        return "color3";
-    case ValueType::vector3_value:
-        return "vector3";
-    case ValueType::boolean_value:
-        return "boolean";
+    case ValueType::float_value: return "float";
+    case ValueType::color3_value: return "color3";
+    case ValueType::vector3_value: return "vector3";
+    case ValueType::boolean_value: return "boolean";
     }
     return "unknown";
 }
@@ -198,7 +194,7 @@ std::string format_input(const Inputs& inputs, const ParameterDescriptor& descri
 // The file's text and path, kept so every message can say "path:line:column".
 class SourceFile
 {
-public:
+  public:
     SourceFile(std::string path, std::string text) : path_(std::move(path)), text_(std::move(text)) {}
 
     const std::string& path() const { return path_; }
@@ -232,7 +228,7 @@ public:
         throw MaterialError(location(node) + ": " + problem);
     }
 
-private:
+  private:
     std::string path_;
     std::string text_;
 };
@@ -311,8 +307,8 @@ void read_input(const SourceFile& source, const std::string& document_colorspace
                 const pugi::xml_node& input_node, SurfaceValues& values)
 {
     const std::string name = input_node.attribute("name").as_string();
-    const std::string context = "open_pbr_surface '" + std::string(surface_node.attribute("name").as_string()) +
-                                "', input '" + name + "'";
+    const std::string context =
+        "open_pbr_surface '" + std::string(surface_node.attribute("name").as_string()) + "', input '" + name + "'";
     if (name.empty())
     {
         source.fail(input_node, "open_pbr_surface '" + std::string(surface_node.attribute("name").as_string()) +
@@ -344,8 +340,8 @@ void read_input(const SourceFile& source, const std::string& document_colorspace
     }
     if (std::string_view(type_attribute.value()) != type_name(type))
     {
-        source.fail(input_node, context + ": wrong type '" + type_attribute.value() + "', expected '" +
-                                    type_name(type) + "'");
+        source.fail(input_node,
+                    context + ": wrong type '" + type_attribute.value() + "', expected '" + type_name(type) + "'");
     }
     // Colors are used as written; a color authored in another space would need a conversion
     // this loader does not do, so say so instead of rendering the wrong color.
@@ -384,8 +380,8 @@ void read_input(const SourceFile& source, const std::string& document_colorspace
         if (components.size() != expected_count)
         {
             source.fail(input_node, context + ": value '" + std::string(text) + "' has " +
-                                        std::to_string(components.size()) + " component(s), type '" +
-                                        type_name(type) + "' needs " + std::to_string(expected_count));
+                                        std::to_string(components.size()) + " component(s), type '" + type_name(type) +
+                                        "' needs " + std::to_string(expected_count));
         }
         value.scalar = components[0];
         if (expected_count == 3)
@@ -397,8 +393,8 @@ void read_input(const SourceFile& source, const std::string& document_colorspace
     values.inputs_set.push_back(name);
 }
 
-Material read_surface(const SourceFile& source, const std::string& document_colorspace,
-                      const pugi::xml_node& surface_node, const std::string& material_name)
+Material read_surface(const SourceFile& source, const std::string& document_colorspace, const pugi::xml_node& surface_node,
+                      const std::string& material_name)
 {
     SurfaceValues values;
     for (const pugi::xml_node& input_node : surface_node.children("input"))
@@ -481,8 +477,7 @@ std::vector<Material> load_materialx_file(const std::string& path)
         if (shader_input.attribute("nodegraph"))
         {
             source.fail(shader_input, context + ": surfaceshader connected to nodegraph '" +
-                                          shader_input.attribute("nodegraph").value() +
-                                          "'; node graphs are not supported");
+                                          shader_input.attribute("nodegraph").value() + "'; node graphs are not supported");
         }
         const std::string node_name = shader_input.attribute("nodename").as_string();
         if (node_name.empty())
@@ -492,8 +487,8 @@ std::vector<Material> load_materialx_file(const std::string& path)
         const auto found = top_level_elements.find(node_name);
         if (found == top_level_elements.end())
         {
-            source.fail(shader_input, context + ": surfaceshader nodename '" + node_name +
-                                          "' references a node that does not exist");
+            source.fail(shader_input,
+                        context + ": surfaceshader nodename '" + node_name + "' references a node that does not exist");
         }
         // A material of another shading model (standard_surface, ...) is not ours to load.
         if (!is_open_pbr_surface(found->second))

@@ -30,16 +30,16 @@ namespace openpbr::host {
 // message names the file, the line and column where known, and the input concerned.
 class MaterialError : public std::runtime_error
 {
-public:
+  public:
     explicit MaterialError(const std::string& message) : std::runtime_error(message) {}
     ~MaterialError() override;  // defined in the .cpp so the vtable lives in one object file
 };
 
 struct Material
 {
-    std::string name;  // the surfacematerial's name, e.g. "Glass"; the node's name for a bare node
-    std::string file;  // the path the material was loaded from, as given; empty for built-ins
-    std::string colorspace;  // the document's colorspace attribute, e.g. "acescg"; may be empty
+    std::string name;                        // the surfacematerial's name, e.g. "Glass"; the node's name for a bare node
+    std::string file;                        // the path the material was loaded from, as given; empty for built-ins
+    std::string colorspace;                  // the document's colorspace attribute, e.g. "acescg"; may be empty
     openpbr::OpenPBR_ResolvedInputs inputs;  // spec defaults, overridden by the file's values
     std::vector<std::string> inputs_set;     // OpenPBR input names given in the file, file order
 };

@@ -10,9 +10,9 @@ const std::vector<ParameterBasis>& parameter_bases()
 #define OPENPBR_BASIS_SKIP_VECTOR2(name, default_x, default_y)
 #define OPENPBR_BASIS_SKIP_BOOL(name, default_value)
 #define OPENPBR_BASIS_ENTRY(name, normal_input, tangent_input) {&ParameterInputs::name, #normal_input, #tangent_input},
-    static const std::vector<ParameterBasis> bases = {
-        OPENPBR_PARAMETERS(OPENPBR_BASIS_SKIP_FLOAT, OPENPBR_BASIS_SKIP_COLOR, OPENPBR_BASIS_SKIP_VECTOR2,
-                           OPENPBR_BASIS_SKIP_BOOL, OPENPBR_BASIS_ENTRY)};
+    static const std::vector<ParameterBasis> bases = {OPENPBR_PARAMETERS(OPENPBR_BASIS_SKIP_FLOAT, OPENPBR_BASIS_SKIP_COLOR,
+                                                                         OPENPBR_BASIS_SKIP_VECTOR2, OPENPBR_BASIS_SKIP_BOOL,
+                                                                         OPENPBR_BASIS_ENTRY)};
 #undef OPENPBR_BASIS_SKIP_FLOAT
 #undef OPENPBR_BASIS_SKIP_COLOR
 #undef OPENPBR_BASIS_SKIP_VECTOR2
@@ -31,12 +31,12 @@ const std::vector<ParameterDescriptor>& parameter_descriptors()
     list.push_back({#name, &ParameterInputs::name, true});
 #define OPENPBR_DESCRIBE_VECTOR2(name, default_x, default_y) list.push_back({#name, &ParameterInputs::name, false});
 #define OPENPBR_DESCRIBE_BOOL(name, default_value) list.push_back({#name, &ParameterInputs::name, true});
-#define OPENPBR_DESCRIBE_BASIS(name, normal_input, tangent_input)         \
+#define OPENPBR_DESCRIBE_BASIS(name, normal_input, tangent_input)        \
     list.push_back({#normal_input, GeometryVector{basis, false}, true}); \
     list.push_back({#tangent_input, GeometryVector{basis, true}, true}); \
     ++basis;
-        OPENPBR_PARAMETERS(OPENPBR_DESCRIBE_FLOAT, OPENPBR_DESCRIBE_COLOR, OPENPBR_DESCRIBE_VECTOR2,
-                           OPENPBR_DESCRIBE_BOOL, OPENPBR_DESCRIBE_BASIS)
+        OPENPBR_PARAMETERS(OPENPBR_DESCRIBE_FLOAT, OPENPBR_DESCRIBE_COLOR, OPENPBR_DESCRIBE_VECTOR2, OPENPBR_DESCRIBE_BOOL,
+                           OPENPBR_DESCRIBE_BASIS)
 #undef OPENPBR_DESCRIBE_FLOAT
 #undef OPENPBR_DESCRIBE_COLOR
 #undef OPENPBR_DESCRIBE_VECTOR2

@@ -52,7 +52,7 @@ namespace {
 
 class Progress
 {
-public:
+  public:
     Progress(bool enabled, int total) : enabled(enabled), total(total) {}
     void step(const std::string& what)
     {
@@ -72,7 +72,7 @@ public:
         std::fflush(stderr);
     }
 
-private:
+  private:
     bool enabled;
     int total;
     int done = 0;
@@ -249,8 +249,9 @@ std::vector<float> table_with_2d_size(int size, std::uint32_t samples, const std
     LutLayout layout = shipped;
     layout.size_2d = size;
     const std::filesystem::path cache_file =
-        cache_directory.empty() ? std::filesystem::path()
-                                : cache_directory / ("lut_2d_" + std::to_string(size) + "_" + std::to_string(samples) + ".bin");
+        cache_directory.empty()
+            ? std::filesystem::path()
+            : cache_directory / ("lut_2d_" + std::to_string(size) + "_" + std::to_string(samples) + ".bin");
     if (!cache_file.empty() && std::filesystem::exists(cache_file))
     {
         try
@@ -345,8 +346,8 @@ CompileResult slang_compile(const std::filesystem::path& root, const std::vector
     {
         command += " -D" + define;
     }
-    command += " -o \"" + output.string() + "\" \"" + (root / "targets/kernels/conformance.slang").string() +
-               "\" > /dev/null 2>&1";
+    command +=
+        " -o \"" + output.string() + "\" \"" + (root / "targets/kernels/conformance.slang").string() + "\" > /dev/null 2>&1";
     CompileResult result;
     const Stopwatch stopwatch;
     const int status = std::system(command.c_str());
@@ -388,7 +389,8 @@ LavapipeWorkload lavapipe_workload(const std::vector<AccuracyMaterial>& material
     workload.result_floats = run_conformance_cpu(probe, pack_materials({default_material()})).size();
     if (query_floats < 11)
     {
-        throw std::runtime_error("accuracy: unexpected conformance query record of " + std::to_string(query_floats) + " floats");
+        throw std::runtime_error("accuracy: unexpected conformance query record of " + std::to_string(query_floats) +
+                                 " floats");
     }
     workload.queries.assign(queries.size() * query_floats, 0.0f);
     for (std::size_t i = 0; i < queries.size(); ++i)
@@ -509,10 +511,11 @@ std::vector<AccuracyRow> run_accuracy_study(const AccuracyOptions& requested)
     {
         vulkan_settings += variant.on_vulkan ? 1 : 0;
     }
-    Progress progress(options.progress, 4 + int(variants.size()) + baseline_count + (options.compile ? vulkan_settings + 1 : 0));
+    Progress progress(options.progress,
+                      4 + int(variants.size()) + baseline_count + (options.compile ? vulkan_settings + 1 : 0));
     std::vector<AccuracyRow> rows;
-    auto add = [&rows](const std::string& knob, const std::string& setting, const std::string& error_metric,
-                       double error, const std::string& time_metric, double time, bool plotted = false) {
+    auto add = [&rows](const std::string& knob, const std::string& setting, const std::string& error_metric, double error,
+                       const std::string& time_metric, double time, bool plotted = false) {
         rows.push_back(AccuracyRow{knob, setting, error_metric, error, time_metric, time, plotted});
     };
 
@@ -601,7 +604,7 @@ std::vector<AccuracyRow> run_accuracy_study(const AccuracyOptions& requested)
     progress.step("reference evaluations");
 
     const std::vector<AccuracyMaterial> white_materials = {metal(1.0f, 0.2f), metal(1.0f, 0.5f), metal(1.0f, 0.9f),
-                                                           glass(0.2f), glass(0.5f), glass(0.9f)};
+                                                           glass(0.2f),       glass(0.5f),       glass(0.9f)};
     // CPU times of every variant in rounds (each round times every variant once, the minimum
     // over the rounds is kept): a burst of load from other processes then slows one round of
     // every variant instead of every round of one, so the settings stay comparable.
@@ -657,10 +660,10 @@ std::vector<AccuracyRow> run_accuracy_study(const AccuracyOptions& requested)
         add(knob, setting, "albedo error vs random walk (mean)", errors.mean_error, "CPU ns per prepare+eval", eval_ns);
         add(knob, setting, "white furnace deviation (max)", furnace, "CPU ns per prepare+sample", sample_ns);
         add(knob, setting, "per-query relative error vs shipped (max)", query_error, "CPU ns per prepare+eval", eval_ns);
-        add(knob, setting, "per-query relative error vs shipped (99th percentile)", percentile_relative_error(values, reference),
+        add(knob, setting, "per-query relative error vs shipped (99th percentile)",
+            percentile_relative_error(values, reference), "CPU ns per prepare+eval", eval_ns);
+        add(knob, setting, "per-query relative error vs shipped (median)", percentile_relative_error(values, reference, 0.5),
             "CPU ns per prepare+eval", eval_ns);
-        add(knob, setting, "per-query relative error vs shipped (median)",
-            percentile_relative_error(values, reference, 0.5), "CPU ns per prepare+eval", eval_ns);
         add(knob, setting, "albedo estimator variance (mean)", variance, "CPU ns per prepare+sample", sample_ns);
         add(knob, setting, "variance x ns per sample", variance * sample_ns, "CPU ns per prepare+sample", sample_ns);
         if (!double_reference.empty())
@@ -690,10 +693,11 @@ std::vector<AccuracyRow> run_accuracy_study(const AccuracyOptions& requested)
             std::vector<float> film_values(3 * queries.size());
             const double film_ns =
                 time_ns_per_query(queries.size(), [&] { variant.eval(film_materials, queries, film_values.data()); });
-            add(knob, setting, "per-query relative error vs full thin film (max)", max_relative_error(film_values, film_reference),
-                "CPU ns per prepare+eval (thin-film materials)", film_ns);
+            add(knob, setting, "per-query relative error vs full thin film (max)",
+                max_relative_error(film_values, film_reference), "CPU ns per prepare+eval (thin-film materials)", film_ns);
             add(knob, setting, "per-query relative error vs full thin film (99th percentile)",
-                percentile_relative_error(film_values, film_reference), "CPU ns per prepare+eval (thin-film materials)", film_ns);
+                percentile_relative_error(film_values, film_reference), "CPU ns per prepare+eval (thin-film materials)",
+                film_ns);
         }
         progress.step(knob + ": " + setting);
     }
@@ -726,7 +730,8 @@ std::vector<AccuracyRow> run_accuracy_study(const AccuracyOptions& requested)
         });
         add("baseline", setting, "albedo error vs random walk (max)", errors.max_error, "CPU ns per prepare+eval",
             eval_ns + 0.0 * double(sink), true);
-        add("baseline", setting, "albedo error vs random walk (mean)", errors.mean_error, "CPU ns per prepare+eval", eval_ns);
+        add("baseline", setting, "albedo error vs random walk (mean)", errors.mean_error, "CPU ns per prepare+eval",
+            eval_ns);
         add("baseline", setting, "albedo error vs single-scattering walk (max)",
             albedo_errors(model, single_truth).max_error, "CPU ns per prepare+eval", eval_ns);
         progress.step("baseline: " + setting);
@@ -757,7 +762,8 @@ std::vector<AccuracyRow> run_accuracy_study(const AccuracyOptions& requested)
                                     " at " + std::to_string(samples) + " samples";
         add("baseline", setting, "albedo error vs random walk (max)", errors.max_error, "CPU ns per DFG look-up",
             lookup_ns + 0.0 * double(sink), true);
-        add("baseline", setting, "albedo error vs random walk (mean)", errors.mean_error, "CPU ns per DFG look-up", lookup_ns);
+        add("baseline", setting, "albedo error vs random walk (mean)", errors.mean_error, "CPU ns per DFG look-up",
+            lookup_ns);
         add("baseline", setting, "albedo error vs single-scattering walk (max)",
             albedo_errors(model, single_truth).max_error, "CPU ns per DFG look-up", lookup_ns);
         progress.step("baseline: " + setting);
@@ -811,11 +817,10 @@ std::vector<AccuracyRow> run_accuracy_study(const AccuracyOptions& requested)
                 result.milliseconds);
             if (context)
             {
-                const std::vector<std::byte> table =
-                    variant.table == AccuracyTable::half      ? to_bytes(half_words)
-                    : variant.table == AccuracyTable::size_16 ? to_bytes(table_16)
-                    : variant.table == AccuracyTable::size_64 ? to_bytes(table_64)
-                                                              : to_bytes(shipped_lut());
+                const std::vector<std::byte> table = variant.table == AccuracyTable::half      ? to_bytes(half_words)
+                                                     : variant.table == AccuracyTable::size_16 ? to_bytes(table_16)
+                                                     : variant.table == AccuracyTable::size_64 ? to_bytes(table_64)
+                                                                                               : to_bytes(shipped_lut());
                 const LavapipeRun run = run_on_lavapipe(*context, spirv, table, workload);
                 if (&variant == &variants.front())
                 {
@@ -831,8 +836,8 @@ std::vector<AccuracyRow> run_accuracy_study(const AccuracyOptions& requested)
                     const LavapipeRun film_run = run_on_lavapipe(*context, spirv, table, film_workload);
                     add(variant.knob, variant.setting,
                         "lavapipe per-query relative error vs CPU full thin film (99th percentile)",
-                        percentile_relative_error(film_run.values, gpu_film_reference), "lavapipe queries/s (thin-film materials)",
-                        film_run.queries_per_second);
+                        percentile_relative_error(film_run.values, gpu_film_reference),
+                        "lavapipe queries/s (thin-film materials)", film_run.queries_per_second);
                 }
             }
             progress.step("slang + lavapipe: " + variant.setting);
@@ -1027,7 +1032,8 @@ std::string accuracy_to_svg(const std::vector<AccuracyRow>& rows)
     std::ostringstream svg;
     svg << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << width << "\" height=\"" << height
         << "\" font-family=\"sans-serif\" font-size=\"11\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
-    svg << "<text x=\"" << left << "\" y=\"22\" font-size=\"15\">OpenPBR accuracy vs time: directional albedo error "
+    svg << "<text x=\"" << left
+        << "\" y=\"22\" font-size=\"15\">OpenPBR accuracy vs time: directional albedo error "
            "(max, vs random walk) against CPU time per query</text>\n";
     for (double decade = time_low; decade <= time_high + 1e-9; decade += 1.0)
     {

@@ -36,10 +36,10 @@ namespace openpbr::host {
 
 struct AccuracyOptions
 {
-    bool quick = false;  // small grids and sample counts (a test run in seconds)
-    std::uint64_t walk_paths = 1u << 16;   // random-walk paths per ground-truth point, e.g. 65536
-    std::uint32_t albedo_samples = 4096;   // BSDF samples per albedo estimate, e.g. 4096
-    std::uint32_t timing_queries = 8192;   // queries per timing batch, e.g. 8192
+    bool quick = false;                      // small grids and sample counts (a test run in seconds)
+    std::uint64_t walk_paths = 1u << 16;     // random-walk paths per ground-truth point, e.g. 65536
+    std::uint32_t albedo_samples = 4096;     // BSDF samples per albedo estimate, e.g. 4096
+    std::uint32_t timing_queries = 8192;     // queries per timing batch, e.g. 8192
     std::uint32_t table_samples = 1u << 14;  // Monte Carlo samples per node of the 16/64 tables
     // Ground-truth and table cache, e.g. build/accuracy-cache; empty: no cache.
     std::filesystem::path cache_directory;
@@ -47,7 +47,7 @@ struct AccuracyOptions
     // repository and a Vulkan device); off in quick mode.
     bool compile = true;
     std::filesystem::path repository_root;  // for targets/slangc.mjs and the kernel, e.g. "."
-    bool progress = true;  // progress bar on stderr
+    bool progress = true;                   // progress bar on stderr
 
     // The options with the --quick reductions applied.
     AccuracyOptions effective() const;

@@ -157,8 +157,10 @@ BenchDirections make_bench_directions(std::size_t count, unsigned seed)
     std::uniform_real_distribution<float> uniform(0.0f, 1.0f);
     for (std::size_t i = 0; i < count; ++i)
     {
-        directions.views.push_back(openpbr::openpbr_sample_cosine_hemisphere(glm::vec2(uniform(generator), uniform(generator))));
-        directions.lights.push_back(openpbr::openpbr_sample_cosine_hemisphere(glm::vec2(uniform(generator), uniform(generator))));
+        directions.views.push_back(
+            openpbr::openpbr_sample_cosine_hemisphere(glm::vec2(uniform(generator), uniform(generator))));
+        directions.lights.push_back(
+            openpbr::openpbr_sample_cosine_hemisphere(glm::vec2(uniform(generator), uniform(generator))));
     }
     return directions;
 }
@@ -229,13 +231,13 @@ nlohmann::json run_specialization_bench(const SpecializationBenchOptions& option
                     {
                         statistics[statistic.name] = statistic.value;
                     }
-                    report["pipelines"].push_back({{"scene", scene.name},
-                                                   {"statistics", statistics},
-                                                   {"toggles", feature_names(pipeline.mask)},
-                                                   {"create_ms", pipeline.create_ms},
-                                                   {"first_dispatch_ms", pipeline.first_dispatch_ms},
-                                                   {"create_plus_first_dispatch_s",
-                                                    (pipeline.create_ms + pipeline.first_dispatch_ms) * 1e-3}});
+                    report["pipelines"].push_back(
+                        {{"scene", scene.name},
+                         {"statistics", statistics},
+                         {"toggles", feature_names(pipeline.mask)},
+                         {"create_ms", pipeline.create_ms},
+                         {"first_dispatch_ms", pipeline.first_dispatch_ms},
+                         {"create_plus_first_dispatch_s", (pipeline.create_ms + pipeline.first_dispatch_ms) * 1e-3}});
                 }
             };
             measure(full_feature_mask(), "gpu_full_qps");
@@ -260,8 +262,8 @@ std::string specialization_bench_text(const nlohmann::json& report)
             toggles += (toggles.empty() ? "" : "+") + name.get<std::string>();
         }
         text << scene["name"].get<std::string>() << " (" << scene["materials"].get<std::size_t>() << " materials, {"
-             << (toggles.empty() ? "base" : toggles) << "}): CPU eval " << scene["cpu_full_ns"].get<double>()
-             << " ns full, " << scene["cpu_specialized_ns"].get<double>() << " ns specialized (run-time)";
+             << (toggles.empty() ? "base" : toggles) << "}): CPU eval " << scene["cpu_full_ns"].get<double>() << " ns full, "
+             << scene["cpu_specialized_ns"].get<double>() << " ns specialized (run-time)";
         if (scene.contains("cpu_compile_time_specialized_ns"))
         {
             text << ", " << scene["cpu_compile_time_specialized_ns"].get<double>() << " ns (compile-time)";
@@ -271,8 +273,7 @@ std::string specialization_bench_text(const nlohmann::json& report)
             const double full = scene["gpu_full_qps"].get<double>();
             const double specialized = scene["gpu_specialized_qps"].get<double>();
             text << "; GPU (" << scene["gpu_timing"].get<std::string>() << ") " << std::lround(full) << " q/s full, "
-                 << std::lround(specialized)
-                 << " q/s specialized (x" << (full > 0.0 ? specialized / full : 0.0) << ")";
+                 << std::lround(specialized) << " q/s specialized (x" << (full > 0.0 ? specialized / full : 0.0) << ")";
         }
         text << "\n";
     }

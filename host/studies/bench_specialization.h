@@ -45,8 +45,7 @@ inline double thread_cpu_seconds()
     return double(now.tv_sec) + 1e-9 * double(now.tv_nsec);
 }
 
-template <typename Call>
-double measure_ns_per_call(std::size_t count, Call call)
+template <typename Call> double measure_ns_per_call(std::size_t count, Call call)
 {
     constexpr std::size_t calls = std::size_t(1) << 18;
     std::vector<double> runs;
@@ -75,8 +74,8 @@ std::vector<float> run_conformance_cpu_base_only(const std::vector<float>& queri
 
 struct SpecializationBenchOptions
 {
-    std::string materials_directory;  // e.g. "materials"
-    std::string kernel_directory;     // e.g. "build/kernels"
+    std::string materials_directory;   // e.g. "materials"
+    std::string kernel_directory;      // e.g. "build/kernels"
     std::string path = "slang-spirv";  // GPU path, e.g. "glsl-spirv"
     std::size_t gpu_queries = 100000;  // queries per scene and pipeline, e.g. 100000
     int gpu_repeats = 5;               // dispatches per pipeline (median of 2..n), e.g. 5

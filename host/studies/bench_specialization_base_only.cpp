@@ -39,8 +39,9 @@ std::vector<float> run_conformance_cpu_base_only(const std::vector<float>& queri
     base_only_kernel::queries = queries.data();
     base_only_kernel::materials = materials.data();
     base_only_kernel::results = results.data();
-    tbb::parallel_for(std::size_t(0), query_count,
-                      [](std::size_t query) { base_only::openpbr_conformance_run_query(unsigned(query), OPENPBR_CONFORMANCE_MODE_ALL); });
+    tbb::parallel_for(std::size_t(0), query_count, [](std::size_t query) {
+        base_only::openpbr_conformance_run_query(unsigned(query), OPENPBR_CONFORMANCE_MODE_ALL);
+    });
     return results;
 }
 

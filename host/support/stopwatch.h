@@ -8,12 +8,12 @@ namespace openpbr::host {
 
 class Stopwatch
 {
-public:
+  public:
     // Seconds since construction, e.g. 0.25.
     double seconds() const { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count(); }
     double milliseconds() const { return seconds() * 1000.0; }
 
-private:
+  private:
     std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
 };
 

@@ -31,11 +31,11 @@ constexpr int fuzz_max_scattering = 100000;  // a walk this long is counted as a
 // (std::mt19937_64 is specified exactly by the standard, so streams are portable).
 class UniformSource
 {
-public:
+  public:
     explicit UniformSource(std::uint64_t seed) : engine_(seed) {}
     double next() { return double(engine_() >> 11) * 0x1.0p-53; }
 
-private:
+  private:
     std::mt19937_64 engine_;
 };
 
@@ -62,7 +62,10 @@ double fuzz_cross_section_from_roughness(double alpha)
     return std::max(clamped * clamped, fuzz_min_cross_section);
 }
 // Per-cell seeds: SplitMix64 over the seed and the cell index.
-std::uint64_t fuzz_cell_seed(std::uint64_t seed, std::size_t cell) { return splitmix64(splitmix64(seed) ^ std::uint64_t(cell)); }
+std::uint64_t fuzz_cell_seed(std::uint64_t seed, std::size_t cell)
+{
+    return splitmix64(splitmix64(seed) ^ std::uint64_t(cell));
+}
 
 // SGGX (Heitz et al. 2015) with S = diag(1, 1, c^2), c = cross_section: sigma(w) = sqrt(w^T S w),
 // D(m) = 1 / (pi sqrt(det S) (m^T S^-1 m)^2).
@@ -269,7 +272,8 @@ std::array<double, 2> nelder_mead(const Function& f, std::array<double, 2> start
     {
         // Order: best first.
         std::array<int, 3> order = {0, 1, 2};
-        std::sort(order.begin(), order.begin() + n + 1, [&](int l, int r) { return value[std::size_t(l)] < value[std::size_t(r)]; });
+        std::sort(order.begin(), order.begin() + n + 1,
+                  [&](int l, int r) { return value[std::size_t(l)] < value[std::size_t(r)]; });
         std::array<std::array<double, 2>, 3> sorted_vertex;
         std::array<double, 3> sorted_value;
         for (int i = 0; i <= n; ++i)
@@ -467,8 +471,7 @@ FuzzLtcFit fit_fuzz_ltc(const FuzzSimulation& simulation, bool symmetric)
     // Refinement with 3 x 3 points per bin.
     const BinPoints points = make_bin_points(simulation.mu_bins, simulation.phi_bins, fit_subsamples);
     const auto objective = [&](const std::array<double, 2>& p) { return objective_with(points, scratch, p[0], p[1]); };
-    const std::array<double, 2> best =
-        nelder_mead(objective, {best_log_a, best_b}, {0.1, 0.1}, symmetric ? 1 : 2, 400);
+    const std::array<double, 2> best = nelder_mead(objective, {best_log_a, best_b}, {0.1, 0.1}, symmetric ? 1 : 2, 400);
     fit.a = std::exp(std::clamp(best[0], log_a_min, log_a_max));
     fit.b = symmetric ? 0.0 : std::clamp(best[1], -b_limit, b_limit);
     fit.fitted = true;
@@ -581,7 +584,8 @@ void write_atomically(const std::filesystem::path& path, const std::string& byte
     std::filesystem::rename(temporary, path, error);
     if (error)
     {
-        throw std::runtime_error("cannot rename '" + temporary.string() + "' to '" + path.string() + "': " + error.message());
+        throw std::runtime_error("cannot rename '" + temporary.string() + "' to '" + path.string() +
+                                 "': " + error.message());
     }
 }
 

@@ -66,24 +66,24 @@
 
 namespace openpbr::host {
 
-inline constexpr int fuzz_ltc_channel_count = 3;  // a, b, R
-inline constexpr double fuzz_min_cross_section = 0.01;  // c = max(alpha^2, this)
+inline constexpr int fuzz_ltc_channel_count = 3;          // a, b, R
+inline constexpr double fuzz_min_cross_section = 0.01;    // c = max(alpha^2, this)
 inline constexpr std::uint64_t fuzz_min_fit_count = 256;  // reflected photons needed to fit (a, b)
 
 struct FuzzFitOptions
 {
-    int size = 32;                         // nodes per axis; the lobe header compiles 32
-    std::uint64_t photons = 1u << 19;      // photons per cell (about 3 CPU-minutes in all)
-    int histogram_mu_bins = 32;            // bins over mu_i in [0, 1]
-    int histogram_phi_bins = 32;           // bins over |phi_i - phi_o| in [0, pi]
-    std::uint64_t seed = 0x0F0220F0u;      // base seed of the per-cell streams
-    int threads = 0;                       // 0: TBB's default (every core); n > 0: at most n
-    bool progress = false;                 // a progress line per 10% on stderr
+    int size = 32;                     // nodes per axis; the lobe header compiles 32
+    std::uint64_t photons = 1u << 19;  // photons per cell (about 3 CPU-minutes in all)
+    int histogram_mu_bins = 32;        // bins over mu_i in [0, 1]
+    int histogram_phi_bins = 32;       // bins over |phi_i - phi_o| in [0, pi]
+    std::uint64_t seed = 0x0F0220F0u;  // base seed of the per-cell streams
+    int threads = 0;                   // 0: TBB's default (every core); n > 0: at most n
+    bool progress = false;             // a progress line per 10% on stderr
 };
 
 // Node coordinate -> physical parameter.
-double fuzz_mu_from_coordinate(double c);     // c
-double fuzz_alpha_from_coordinate(double c);  // c (the roughness, clamped to [0, 1])
+double fuzz_mu_from_coordinate(double c);                // c
+double fuzz_alpha_from_coordinate(double c);             // c (the roughness, clamped to [0, 1])
 double fuzz_cross_section_from_roughness(double alpha);  // max(alpha^2, fuzz_min_cross_section)
 std::uint64_t fuzz_cell_seed(std::uint64_t seed, std::size_t cell);
 
@@ -132,7 +132,7 @@ struct FuzzLtcFit
     // The part of total_variation expected from the histogram's noise alone (Poisson counts n:
     // E|n - E n| ~ sqrt(2 n / pi)): 1/2 sum sqrt(2 n_bin / pi) / n_reflected.
     double noise_total_variation = 0.0;
-    bool fitted = false;             // false: too few reflected photons, (a, b) = (1, 0)
+    bool fitted = false;  // false: too few reflected photons, (a, b) = (1, 0)
 };
 
 // Fits (a, b) to the exit distribution of `simulation`; b is held at 0 when `symmetric`.

@@ -139,12 +139,10 @@ float sample_weight(const CellSetup& cell, const vec3 h)
     switch (cell.table)
     {
     case lut_table_ggx_albedo:
-    case lut_table_ggx_anisotropy_ratio:
-        return reflection_weight(cell, h);
+    case lut_table_ggx_anisotropy_ratio: return reflection_weight(cell, h);
     case lut_table_dielectric_reflection:
         return openpbr_fresnel_dielectric(dot(cell.view, h), cell.eta) * reflection_weight(cell, h);
-    case lut_table_dielectric_transmission:
-        return transmission_weight(cell, h);
+    case lut_table_dielectric_transmission: return transmission_weight(cell, h);
     default:
     {
         // Both events of the same microfacet, weighted by F and 1 - F: no random choice between
@@ -161,7 +159,7 @@ float sample_weight(const CellSetup& cell, const vec3 h)
 
 class ProgressBar
 {
-public:
+  public:
     ProgressBar(const std::size_t total, const bool enabled, const bool terminal)
         : total_(total), enabled_(enabled && total > 0), terminal_(terminal), start_(Clock::now())
     {
@@ -219,7 +217,7 @@ public:
         std::fflush(stderr);
     }
 
-private:
+  private:
     using Clock = std::chrono::steady_clock;
 
     double seconds_since_start() const { return std::chrono::duration<double>(Clock::now() - start_).count(); }
@@ -240,8 +238,8 @@ private:
         {
             std::snprintf(eta_text, sizeof(eta_text), "%.1f s", elapsed * double(total_ - done) / double(done));
         }
-        std::fprintf(stderr, "%slutgen [%s] %5.1f%%  elapsed %.1f s  ETA %s%s", terminal_ ? "\r" : "", bar,
-                     100.0 * fraction, elapsed, eta_text, terminal_ ? "   " : "\n");
+        std::fprintf(stderr, "%slutgen [%s] %5.1f%%  elapsed %.1f s  ETA %s%s", terminal_ ? "\r" : "", bar, 100.0 * fraction,
+                     elapsed, eta_text, terminal_ ? "   " : "\n");
         std::fflush(stderr);
     }
 
@@ -279,8 +277,8 @@ void write_file_atomically(const std::filesystem::path& path, const std::string&
         std::ofstream file(temporary, std::ios::binary | std::ios::trunc);
         if (!file)
         {
-            throw std::runtime_error("lut_generator: cannot open " + temporary.string() + " for writing: " +
-                                     std::strerror(errno));
+            throw std::runtime_error("lut_generator: cannot open " + temporary.string() +
+                                     " for writing: " + std::strerror(errno));
         }
         file.write(contents.data(), std::streamsize(contents.size()));
         file.close();
@@ -297,8 +295,8 @@ void write_file_atomically(const std::filesystem::path& path, const std::string&
     {
         std::error_code ignored;
         std::filesystem::remove(temporary, ignored);
-        throw std::runtime_error("lut_generator: cannot rename " + temporary.string() + " to " + path.string() +
-                                 ": " + error.message());
+        throw std::runtime_error("lut_generator: cannot rename " + temporary.string() + " to " + path.string() + ": " +
+                                 error.message());
     }
 }
 
@@ -324,8 +322,8 @@ void check_finite(const std::vector<float>& data, const std::filesystem::path& p
     {
         if (!std::isfinite(data[i]))
         {
-            throw std::runtime_error("lut_generator: value " + std::to_string(i) + " to be written to " +
-                                     path.string() + " is not finite");
+            throw std::runtime_error("lut_generator: value " + std::to_string(i) + " to be written to " + path.string() +
+                                     " is not finite");
         }
     }
 }
@@ -337,9 +335,8 @@ void check_finite(const std::vector<float>& data, const std::filesystem::path& p
 const char* lut_table_name(const int table)
 {
     check_table(table);
-    static const char* const names[lut_table_count] = {"ggx_albedo", "dielectric_reflection",
-                                                       "dielectric_transmission", "dielectric_interface",
-                                                       "ggx_anisotropy_ratio"};
+    static const char* const names[lut_table_count] = {"ggx_albedo", "dielectric_reflection", "dielectric_transmission",
+                                                       "dielectric_interface", "ggx_anisotropy_ratio"};
     return names[table];
 }
 
@@ -400,8 +397,7 @@ static_assert(OPENPBR_LUT_DIELECTRIC_TRANSMISSION_OFFSET ==
                   OPENPBR_LUT_DIELECTRIC_REFLECTION_OFFSET +
                       OPENPBR_LUT_3D_SIZE * OPENPBR_LUT_3D_SIZE * OPENPBR_LUT_3D_ETA_SIZE,
               "table 2 must follow table 1");
-static_assert(OPENPBR_LUT_DIELECTRIC_INTERFACE_OFFSET ==
-                  OPENPBR_LUT_DIELECTRIC_TRANSMISSION_OFFSET + OPENPBR_LUT_3D_COUNT,
+static_assert(OPENPBR_LUT_DIELECTRIC_INTERFACE_OFFSET == OPENPBR_LUT_DIELECTRIC_TRANSMISSION_OFFSET + OPENPBR_LUT_3D_COUNT,
               "table 3 must follow table 2");
 static_assert(OPENPBR_LUT_GGX_ANISOTROPY_RATIO_OFFSET == OPENPBR_LUT_DIELECTRIC_INTERFACE_OFFSET + OPENPBR_LUT_3D_COUNT,
               "table 4 must follow table 3");
@@ -433,8 +429,8 @@ double lut_eta_from_node(const int index, const int eta_size)
 {
     const int half_size = eta_size / 2;
     const bool below_one = index < half_size;
-    const double w = below_one ? 1.0 - double(index) / double(half_size - 1)
-                               : double(index - half_size) / double(half_size - 1);
+    const double w =
+        below_one ? 1.0 - double(index) / double(half_size - 1) : double(index - half_size) / double(half_size - 1);
     // w = (v(s) - v(s_0)) / (v(1) - v(s_0)), v(s) = asinh(s / s_0) + k s, inverted by bisection
     // (v increases).
     const double knee = double(OPENPBR_LUT_ETA_KNEE);
@@ -525,8 +521,8 @@ std::uint64_t lut_cell_seed(const int table, const std::size_t cell, const std::
     return mix64_finalize(stream ^ std::uint64_t(cell));
 }
 
-double estimate_lut_entry(const int table, const double mu, const double r, const double x,
-                          const std::uint32_t samples, const std::uint64_t seed)
+double estimate_lut_entry(const int table, const double mu, const double r, const double x, const std::uint32_t samples,
+                          const std::uint64_t seed)
 {
     return estimate_lut_entry(table, mu, r, x, 0.0, samples, seed);
 }
@@ -535,9 +531,8 @@ namespace {
 
 // One entry at physical parameters: mu_value the view cosine, alpha_value the isotropic GGX
 // alpha, eta the relative IOR; r, x and phi are table 4's coordinates.
-double estimate_entry(const int table, const double mu_value, const double alpha_value, const double eta,
-                      const double r, const double x, const double phi, const std::uint32_t samples,
-                      const std::uint64_t seed)
+double estimate_entry(const int table, const double mu_value, const double alpha_value, const double eta, const double r,
+                      const double x, const double phi, const std::uint32_t samples, const std::uint64_t seed)
 {
     check_table(table);
     if (samples == 0)
@@ -559,8 +554,8 @@ double estimate_entry(const int table, const double mu_value, const double alpha
         const double b = 1.0 - anisotropy;
         const double alpha_t = lut_alpha_from_coordinate(r_value) * std::sqrt(2.0 / (1.0 + b * b));
         const double cos_phi_squared = lut_cos_phi_squared_from_coordinate(phi, mu_value, r_value, anisotropy);
-        cell.view = vec3(float(sin_theta * std::sqrt(cos_phi_squared)),
-                         float(sin_theta * std::sqrt(1.0 - cos_phi_squared)), float(mu_value));
+        cell.view = vec3(float(sin_theta * std::sqrt(cos_phi_squared)), float(sin_theta * std::sqrt(1.0 - cos_phi_squared)),
+                         float(mu_value));
         cell.alpha = vec2(float(alpha_t), float(std::max(b * alpha_t, 1e-7)));
         cell.eta = 1.0f;
     }
@@ -580,8 +575,7 @@ double estimate_entry(const int table, const double mu_value, const double alpha
     double isotropic_sum = 0.0;
     for (std::uint32_t i = 0; i < samples; ++i)
     {
-        const vec2 u(bits_to_unit_float(reverse_bits(i) ^ shift_x),
-                     bits_to_unit_float(sobol_second_dimension(i) ^ shift_y));
+        const vec2 u(bits_to_unit_float(reverse_bits(i) ^ shift_x), bits_to_unit_float(sobol_second_dimension(i) ^ shift_y));
         const vec3 h = openpbr_sample_vndf_spherical_cap(cell.view, cell.alpha, u);
         sum += double(sample_weight(cell, h));
         if (table == lut_table_ggx_anisotropy_ratio)
@@ -664,10 +658,9 @@ std::string describe(const LutGeneratorOptions& options)
     const bool valid = layout.size_2d >= 2 && layout.size_3d >= 2 && layout.size_4d >= 2 && layout.size_4d_anisotropy >= 2 &&
                        layout.size_3d_eta >= 2;
     text << "openpbr lutgen: 2D " << options.size_2d << ", 3D " << options.size_3d << "x" << options.size_3d << "x"
-         << options.size_3d_eta << ", 4D " << options.size_4d << "x"
-         << options.size_4d << "x" << options.size_4d_anisotropy << "x" << options.size_4d_anisotropy << ", "
-         << options.samples << " samples/cell, " << (options.bits == 16 ? "half-rounded" : "float32") << ", "
-         << (valid ? layout.total_count() : 0) << " values";
+         << options.size_3d_eta << ", 4D " << options.size_4d << "x" << options.size_4d << "x" << options.size_4d_anisotropy
+         << "x" << options.size_4d_anisotropy << ", " << options.samples << " samples/cell, "
+         << (options.bits == 16 ? "half-rounded" : "float32") << ", " << (valid ? layout.total_count() : 0) << " values";
     if (options.seed != 0)
     {
         text << ", seed " << options.seed;
@@ -675,8 +668,7 @@ std::string describe(const LutGeneratorOptions& options)
     if (layout != compiled_lut_layout())
     {
         text << " (not the compiled layout " << OPENPBR_LUT_2D_SIZE << " / " << OPENPBR_LUT_3D_SIZE << "x"
-             << OPENPBR_LUT_3D_ETA_SIZE << " / "
-             << OPENPBR_LUT_4D_SIZE << " / " << OPENPBR_LUT_4D_ANISOTROPY_SIZE << ")";
+             << OPENPBR_LUT_3D_ETA_SIZE << " / " << OPENPBR_LUT_4D_SIZE << " / " << OPENPBR_LUT_4D_ANISOTROPY_SIZE << ")";
     }
     return text.str();
 }
@@ -691,9 +683,9 @@ std::vector<float> generate_lut(const LutGeneratorOptions& options)
         throw std::invalid_argument("lut_generator: table sizes must be in [2, " + std::to_string(maximum_size_2d) +
                                     "] (2D), [2, " + std::to_string(maximum_size_3d) + "] (3D), [2, " +
                                     std::to_string(maximum_size_4d) + "] (4D) and an even eta size in [6, " +
-                                    std::to_string(maximum_size_3d) + "], got " + std::to_string(options.size_2d) +
-                                    ", " + std::to_string(options.size_3d) + ", " + std::to_string(options.size_4d) +
-                                    ", " + std::to_string(options.size_4d_anisotropy) + " and eta " +
+                                    std::to_string(maximum_size_3d) + "], got " + std::to_string(options.size_2d) + ", " +
+                                    std::to_string(options.size_3d) + ", " + std::to_string(options.size_4d) + ", " +
+                                    std::to_string(options.size_4d_anisotropy) + " and eta " +
                                     std::to_string(options.size_3d_eta));
     }
     if (options.samples == 0)
@@ -744,8 +736,8 @@ std::vector<float> generate_lut(const LutGeneratorOptions& options)
             const int eta_index = int(local / (std::size_t(layout.size_3d) * std::size_t(layout.size_3d)));
             const double eta = lut_eta_from_node(eta_index, layout.size_3d_eta);
             value = estimate_entry(table, lut_mu_from_view_coordinate(coordinates[0], eta),
-                                   lut_alpha_from_coordinate(coordinates[1]), eta, coordinates[1], 0.0, 0.0,
-                                   options.samples, lut_cell_seed(table, local, options.seed));
+                                   lut_alpha_from_coordinate(coordinates[1]), eta, coordinates[1], 0.0, 0.0, options.samples,
+                                   lut_cell_seed(table, local, options.seed));
         }
         else
         {
@@ -758,13 +750,12 @@ std::vector<float> generate_lut(const LutGeneratorOptions& options)
 
     tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
     arena.execute([&] {
-        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, total, 4),
-                          [&](const tbb::blocked_range<std::size_t>& range) {
-                              for (std::size_t index = range.begin(); index != range.end(); ++index)
-                              {
-                                  compute_cell(index);
-                              }
-                          });
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, total, 4), [&](const tbb::blocked_range<std::size_t>& range) {
+            for (std::size_t index = range.begin(); index != range.end(); ++index)
+            {
+                compute_cell(index);
+            }
+        });
     });
     progress.finish();
     return data;
@@ -772,8 +763,7 @@ std::vector<float> generate_lut(const LutGeneratorOptions& options)
 
 // ---- Files ---------------------------------------------------------------------------------
 
-void write_lut_values_inc(const std::filesystem::path& path, const std::vector<float>& data,
-                          const std::string& comment)
+void write_lut_values_inc(const std::filesystem::path& path, const std::vector<float>& data, const std::string& comment)
 {
     check_finite(data, path);
     std::string text;
@@ -905,8 +895,7 @@ std::vector<float> read_lut_binary(const std::filesystem::path& path, const std:
     return data;
 }
 
-double max_abs_difference(const std::vector<float>& a, const std::vector<float>& b, const int table,
-                          const LutLayout& layout)
+double max_abs_difference(const std::vector<float>& a, const std::vector<float>& b, const int table, const LutLayout& layout)
 {
     check_table(table);
     const std::size_t total = layout.total_count();

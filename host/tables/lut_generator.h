@@ -49,11 +49,11 @@ namespace openpbr::host {
 // Table ids, equal to the order of the tables in the flat array.
 enum LutTable : int
 {
-    lut_table_ggx_albedo = 0,             // E_ggx(mu, r), 2D
-    lut_table_dielectric_reflection = 1,  // E_R(mu, r, x), 3D
+    lut_table_ggx_albedo = 0,               // E_ggx(mu, r), 2D
+    lut_table_dielectric_reflection = 1,    // E_R(mu, r, x), 3D
     lut_table_dielectric_transmission = 2,  // E_T0(mu, r, x), 3D
-    lut_table_dielectric_interface = 3,   // E_RT(mu, r, x), 3D
-    lut_table_ggx_anisotropy_ratio = 4,   // E_ggx(mu, r, a, phi) / E_ggx(mu, r), 4D
+    lut_table_dielectric_interface = 3,     // E_RT(mu, r, x), 3D
+    lut_table_ggx_anisotropy_ratio = 4,     // E_ggx(mu, r, a, phi) / E_ggx(mu, r), 4D
 };
 inline constexpr int lut_table_count = 5;
 
@@ -70,12 +70,12 @@ struct LutLayout
     int size_4d_anisotropy = 0;  // nodes on the anisotropy and azimuth axes of table 4, e.g. 10
     int size_3d_eta = 0;         // nodes on the eta axis of tables 1-3 (even, >= 6), e.g. 48
 
-    int dimensions(int table) const;             // 2, 3 or 4
-    int size(int table) const;                   // nodes on the mu (and roughness) axis of that table
-    int axis_size(int table, int axis) const;    // nodes on axis 0 (mu), 1 (r), 2 (x or a), 3 (phi)
-    std::size_t count(int table) const;          // product of the axis sizes
-    std::size_t offset(int table) const;         // first index of that table in the flat array
-    std::size_t total_count() const;             // count of all tables
+    int dimensions(int table) const;           // 2, 3 or 4
+    int size(int table) const;                 // nodes on the mu (and roughness) axis of that table
+    int axis_size(int table, int axis) const;  // nodes on axis 0 (mu), 1 (r), 2 (x or a), 3 (phi)
+    std::size_t count(int table) const;        // product of the axis sizes
+    std::size_t offset(int table) const;       // first index of that table in the flat array
+    std::size_t total_count() const;           // count of all tables
     bool operator==(const LutLayout& other) const
     {
         return size_2d == other.size_2d && size_3d == other.size_3d && size_4d == other.size_4d &&
@@ -99,11 +99,11 @@ struct LutGeneratorOptions
     // Per cell, e.g. 16384 (the shipped tables; 2.4x the cells of the earlier 25^3 tables, so
     // regeneration takes about 2 minutes of 2 cores); powers of two keep the (0, 2)-sequence a net.
     std::uint32_t samples = 1u << 14;
-    int bits = 32;        // 32: float32; 16: each value rounded to the nearest half (still stored as float)
-    int threads = 0;      // 0: TBB's default (every core); n > 0: at most n worker threads
-    std::uint64_t seed = 0;  // 0: the shipped tables; others give independent replicas (error estimates)
-    bool progress = true;         // progress bar on stderr when stderr is a terminal
-    bool progress_always = false; // also when it is not (one line per 10%, e.g. for CI logs)
+    int bits = 32;                 // 32: float32; 16: each value rounded to the nearest half (still stored as float)
+    int threads = 0;               // 0: TBB's default (every core); n > 0: at most n worker threads
+    std::uint64_t seed = 0;        // 0: the shipped tables; others give independent replicas (error estimates)
+    bool progress = true;          // progress bar on stderr when stderr is a terminal
+    bool progress_always = false;  // also when it is not (one line per 10%, e.g. for CI logs)
 
     LutLayout layout() const { return LutLayout{size_2d, size_3d, size_4d, size_4d_anisotropy, size_3d_eta}; }
 };
@@ -120,17 +120,15 @@ std::vector<float> generate_lut(const LutGeneratorOptions& options);
 // with `samples` samples and digital-shift seed `seed`; generate_lut uses it with
 // seed = lut_cell_seed(table, cell index within the table, options.seed). Exposed for tests and
 // studies.
-double estimate_lut_entry(int table, double mu, double r, double x, double phi, std::uint32_t samples,
-                          std::uint64_t seed);
+double estimate_lut_entry(int table, double mu, double r, double x, double phi, std::uint32_t samples, std::uint64_t seed);
 double estimate_lut_entry(int table, double mu, double r, double x, std::uint32_t samples, std::uint64_t seed);
 std::uint64_t lut_cell_seed(int table, std::size_t cell, std::uint64_t generator_seed = 0);
 // The same estimate for tables 1-3 at a view cosine mu (floored at 1e-4), GGX alpha (floored
 // at 1e-4) and relative IOR eta: what the look-up of slang/openpbr_lut.h approximates there.
-double estimate_dielectric_entry(int table, double mu, double alpha, double eta, std::uint32_t samples,
-                                 std::uint64_t seed);
+double estimate_dielectric_entry(int table, double mu, double alpha, double eta, std::uint32_t samples, std::uint64_t seed);
 
 // The node coordinate -> physical parameter maps of the tables.
-double lut_eta_from_coordinate(double x);    // (1 + y) / (1 - y), y = 2 sgn(x - 0.5) (x - 0.5)^2: 1/3 at 0, 1 at 0.5, 3 at 1
+double lut_eta_from_coordinate(double x);  // (1 + y) / (1 - y), y = 2 sgn(x - 0.5) (x - 0.5)^2: 1/3 at 0, 1 at 0.5, 3 at 1
 // Relative IOR of eta node `index` of an axis of `eta_size` nodes (openpbr_lut_eta_node of
 // slang/openpbr_lut.h inverted): 1/3 at 0, 1 - 2^-20 at eta_size / 2 - 1, 1 + 2^-20 at
 // eta_size / 2, 3 at eta_size - 1.
@@ -139,8 +137,8 @@ double lut_critical_cosine(double eta);  // openpbr_lut_critical_cosine in doubl
 // The view cosine at view coordinate u in [0, 1] of the 3D tables (openpbr_lut_view_coordinate
 // inverted), floored at 1e-4.
 double lut_mu_from_view_coordinate(double u, double eta);
-double lut_alpha_from_coordinate(double r);  // max(r^2, 1e-4)
-double lut_mu_from_coordinate(double mu);    // max(mu^2, 1e-4): the axis is sqrt(mu)
+double lut_alpha_from_coordinate(double r);       // max(r^2, 1e-4)
+double lut_mu_from_coordinate(double mu);         // max(mu^2, 1e-4): the axis is sqrt(mu)
 double lut_anisotropy_from_coordinate(double a);  // 1 - (1 - a)^2: the axis is 1 - sqrt(1 - anisotropy)
 // The azimuth coordinate of table 4 in double precision (openpbr_lut_azimuth_coordinate of
 // slang/openpbr_lut.h): mu the view cosine (floored at 1e-4), r the roughness, a the anisotropy,

@@ -191,8 +191,8 @@ PathResult walk(const MicrosurfaceMaterial& material, const Vector& view, int ma
 
 }  // namespace
 
-MicrosurfaceAlbedo microsurface_albedo(const MicrosurfaceMaterial& material, double mu, int max_order,
-                                       std::uint64_t paths, std::uint64_t seed)
+MicrosurfaceAlbedo microsurface_albedo(const MicrosurfaceMaterial& material, double mu, int max_order, std::uint64_t paths,
+                                       std::uint64_t seed)
 {
     check_mu(mu);
     if (paths == 0 || max_order < 0)
@@ -241,9 +241,10 @@ double microsurface_single_scattering_albedo(const MicrosurfaceMaterial& materia
             {
                 continue;
             }
-            const double f = material.kind == MicrosurfaceKind::conductor_white     ? 1.0
-                             : material.kind == MicrosurfaceKind::conductor_schlick ? fresnel_schlick(material.f0, cos_i)
-                                                                                    : fresnel_dielectric(cos_i, material.eta);
+            const double f = material.kind == MicrosurfaceKind::conductor_white ? 1.0
+                             : material.kind == MicrosurfaceKind::conductor_schlick
+                                 ? fresnel_schlick(material.f0, cos_i)
+                                 : fresnel_dielectric(cos_i, material.eta);
             // Weight of a visible normal: F G2 / G1(view), G2 = 1 / (1 + Lambda_v + Lambda_l).
             sum += f * (1.0 + lambda_view) / (1.0 + lambda_view + smith_lambda(light, alpha));
         }

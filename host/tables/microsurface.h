@@ -27,12 +27,12 @@ namespace openpbr::host {
 
 enum class MicrosurfaceKind
 {
-    conductor_white,      // F = 1: nothing is absorbed, the albedo of all orders is 1
-    conductor_schlick,    // F = Schlick(f0), an energy weight per bounce
-    dielectric_reflect,   // F = exact dielectric Fresnel of eta as an energy weight, reflection only
-                          // (the single-scattering table E_R of slang/openpbr_lut.h)
-    dielectric,           // reflect with probability F, refract otherwise (E_RT's walk)
-    dielectric_refract,   // always refract, weight 1 (E_T0's walk: no Fresnel factor)
+    conductor_white,     // F = 1: nothing is absorbed, the albedo of all orders is 1
+    conductor_schlick,   // F = Schlick(f0), an energy weight per bounce
+    dielectric_reflect,  // F = exact dielectric Fresnel of eta as an energy weight, reflection only
+                         // (the single-scattering table E_R of slang/openpbr_lut.h)
+    dielectric,          // reflect with probability F, refract otherwise (E_RT's walk)
+    dielectric_refract,  // always refract, weight 1 (E_T0's walk: no Fresnel factor)
 };
 
 struct MicrosurfaceMaterial
@@ -45,8 +45,8 @@ struct MicrosurfaceMaterial
 
 struct MicrosurfaceAlbedo
 {
-    double reflected = 0.0;     // energy leaving on the view's side
-    double transmitted = 0.0;   // energy leaving on the other side (dielectrics)
+    double reflected = 0.0;          // energy leaving on the view's side
+    double transmitted = 0.0;        // energy leaving on the other side (dielectrics)
     double reflected_error = 0.0;    // standard error of `reflected`
     double transmitted_error = 0.0;  // standard error of `transmitted`
 };
@@ -54,8 +54,8 @@ struct MicrosurfaceAlbedo
 // Directional albedo at view cosine mu (in (0, 1]) by `paths` random walks seeded by `seed`.
 // max_order: scattering events kept (1 = single scattering; 0 = all, up to 1000 per path).
 // Throws std::invalid_argument for mu outside (0, 1], paths = 0, max_order < 0.
-MicrosurfaceAlbedo microsurface_albedo(const MicrosurfaceMaterial& material, double mu, int max_order,
-                                       std::uint64_t paths, std::uint64_t seed);
+MicrosurfaceAlbedo microsurface_albedo(const MicrosurfaceMaterial& material, double mu, int max_order, std::uint64_t paths,
+                                       std::uint64_t seed);
 
 // Single-scattering albedo at view cosine mu by an n x n midpoint quadrature over the visible
 // normal sampler's unit square (reflection kinds only: conductor_*, dielectric_reflect):
@@ -77,7 +77,7 @@ struct MicrosurfaceQuery
 // paths and seed, so a changed grid simply misses.
 class MicrosurfaceCache
 {
-public:
+  public:
     // Empty path: memory only. An unreadable or malformed file is ignored (recomputed).
     explicit MicrosurfaceCache(std::filesystem::path path);
     // The results of the queries, cached ones read back and the rest walked in parallel (TBB).
@@ -88,7 +88,7 @@ public:
     std::size_t hits() const { return hit_count; }
     std::size_t misses() const { return miss_count; }
 
-private:
+  private:
     std::filesystem::path file;
     std::map<std::string, MicrosurfaceAlbedo> entries;
     bool dirty = false;

@@ -34,12 +34,12 @@ OPENPBR_NAMESPACE_BEGIN
 
 struct OpenPBR_BaselineGgx
 {
-    vec3 diffuse_color;  // (1 - metalness) base_color
-    vec3 f0;             // mix(0.04, base_color, metalness)
-    float alpha;         // roughness^2, floored so D stays finite
-    int visibility;      // OPENPBR_BASELINE_VISIBILITY_*
+    vec3 diffuse_color;          // (1 - metalness) base_color
+    vec3 f0;                     // mix(0.04, base_color, metalness)
+    float alpha;                 // roughness^2, floored so D stays finite
+    int visibility;              // OPENPBR_BASELINE_VISIBILITY_*
     float specular_probability;  // chance of sampling the specular lobe
-    vec3 view;           // local frame, z = normal
+    vec3 view;                   // local frame, z = normal
 };
 
 OPENPBR_FUNC vec3 openpbr_baseline_schlick_fresnel(vec3 f0, float cos_theta)
@@ -75,7 +75,7 @@ OPENPBR_FUNC float openpbr_baseline_visibility(int visibility, float n_dot_v, fl
 // view: local frame with z = the shading normal. Inputs are clamped to their ranges (roughness
 // to [0.02, 1]: the baseline has no delta lobe, so a mirror is approximated by alpha 4e-4).
 OPENPBR_FUNC OpenPBR_BaselineGgx openpbr_baseline_ggx_prepare(vec3 base_color, float metalness, float roughness,
-                                                             int visibility, vec3 view)
+                                                              int visibility, vec3 view)
 {
     OpenPBR_BaselineGgx bsdf;
     const vec3 color = openpbr_clamp_finite(base_color, 0.0f, 1.0f);

@@ -56,9 +56,9 @@ struct OpenPBR_DielectricLobe
     vec2 alpha;
     bool is_delta;
     bool transmission_is_delta;  // is_delta, or the refracted lobe narrower than the delta threshold
-    bool with_fresnel;         // false: transmission-only form, the (1 - F) factor is 1
-    bool dispersive;           // eta differs per channel
-    vec3 eta;                  // n_below / n_above, per channel
+    bool with_fresnel;           // false: transmission-only form, the (1 - F) factor is 1
+    bool dispersive;             // eta differs per channel
+    vec3 eta;                    // n_below / n_above, per channel
     float lambda_view;
     float g1_view;
     uint lobe_id;
@@ -74,8 +74,8 @@ OPENPBR_FUNC float openpbr_dielectric_transmission_width(vec2 alpha, vec3 eta, f
 }
 
 OPENPBR_FUNC OpenPBR_DielectricLobe openpbr_dielectric_lobe_init(vec3 reflection_weight, vec3 transmission_weight,
-                                                                 vec2 alpha, vec3 eta, bool with_fresnel,
-                                                                 uint lobe_id, vec3 view)
+                                                                 vec2 alpha, vec3 eta, bool with_fresnel, uint lobe_id,
+                                                                 vec3 view)
 {
     OpenPBR_DielectricLobe lobe;
     lobe.reflection_weight = with_fresnel ? reflection_weight : vec3(0.0f);
@@ -109,8 +109,7 @@ OPENPBR_FUNC float openpbr_dielectric_transmission_probability(OPENPBR_IN(OpenPB
 
 // Value and density of one channel's IOR at a light direction; returns (value, pdf) with the
 // value excluding the weight, so channels can share the code.
-OPENPBR_FUNC vec2 openpbr_dielectric_lobe_channel(OPENPBR_IN(OpenPBR_DielectricLobe) lobe, vec3 view, vec3 light,
-                                                  float eta)
+OPENPBR_FUNC vec2 openpbr_dielectric_lobe_channel(OPENPBR_IN(OpenPBR_DielectricLobe) lobe, vec3 view, vec3 light, float eta)
 {
     // Below OPENPBR_MIN_VIEW_COSINE the visible microfacet area G1(o) o.n is under float
     // resolution (and Lambda's z^2 would be denormal): nothing scatters.
@@ -192,8 +191,8 @@ OPENPBR_FUNC float openpbr_dielectric_lobe_pdf(OPENPBR_IN(OpenPBR_DielectricLobe
 }
 
 // u.x, u.y: the microfacet; selector in [0, 1): channel (when dispersive) and then R or T.
-OPENPBR_FUNC OpenPBR_LobeSample openpbr_dielectric_lobe_sample(OPENPBR_IN(OpenPBR_DielectricLobe) lobe, vec3 view,
-                                                               vec2 u, float selector)
+OPENPBR_FUNC OpenPBR_LobeSample openpbr_dielectric_lobe_sample(OPENPBR_IN(OpenPBR_DielectricLobe) lobe, vec3 view, vec2 u,
+                                                               float selector)
 {
     if (!(view.z >= OPENPBR_MIN_VIEW_COSINE))
     {
@@ -232,7 +231,8 @@ OPENPBR_FUNC OpenPBR_LobeSample openpbr_dielectric_lobe_sample(OPENPBR_IN(OpenPB
         light = normalize(light);
     }
     OpenPBR_LobeSample lobe_sample = openpbr_make_lobe_sample(
-        light, openpbr_lobe_type(lobe.lobe_id, kind | (reflects ? OPENPBR_LOBE_TYPE_REFLECTION : OPENPBR_LOBE_TYPE_TRANSMISSION)));
+        light,
+        openpbr_lobe_type(lobe.lobe_id, kind | (reflects ? OPENPBR_LOBE_TYPE_REFLECTION : OPENPBR_LOBE_TYPE_TRANSMISSION)));
     if (delta_event)
     {
         // Delta: the chosen branch carries F or (1 - F) over its probability, i.e. exactly 1
@@ -240,12 +240,12 @@ OPENPBR_FUNC OpenPBR_LobeSample openpbr_dielectric_lobe_sample(OPENPBR_IN(OpenPB
         // microfacets are rough (a collapsed refraction lobe, see the header); a dispersive
         // delta only lights the sampled channel (times 3 for its 1/3).
         const vec3 weight = reflects ? lobe.reflection_weight : lobe.transmission_weight;
-        const vec3 channel_mask = lobe.dispersive ? vec3(channel == 0 ? 3.0f : 0.0f, channel == 1 ? 3.0f : 0.0f,
-                                                         channel == 2 ? 3.0f : 0.0f)
-                                                  : vec3(1.0f);
-        const float shadowing = lobe.is_delta ? 1.0f
-                                              : (1.0f + lobe.lambda_view) /
-                                                    (1.0f + lobe.lambda_view + openpbr_ggx_lambda(light, lobe.alpha));
+        const vec3 channel_mask =
+            lobe.dispersive ? vec3(channel == 0 ? 3.0f : 0.0f, channel == 1 ? 3.0f : 0.0f, channel == 2 ? 3.0f : 0.0f)
+                            : vec3(1.0f);
+        const float shadowing =
+            lobe.is_delta ? 1.0f
+                          : (1.0f + lobe.lambda_view) / (1.0f + lobe.lambda_view + openpbr_ggx_lambda(light, lobe.alpha));
         lobe_sample.delta_weight = weight * (channel_mask * shadowing);
     }
     return lobe_sample;
@@ -274,10 +274,9 @@ OPENPBR_FUNC float openpbr_entering_transmission_albedo(float mu, float table_al
 // slab returns subsurface_color (spec "Subsurface": its multiple-scattering albedo), the
 // translucent slab its tint.
 OPENPBR_FUNC OpenPBR_DielectricLobe openpbr_transmission_lobe_prepare(OPENPBR_IN(OpenPBR_ResolvedInputs) inputs,
-                                                                      vec3 layer_weight, float translucent,
-                                                                      float subsurface, vec2 alpha, float table_alpha,
-                                                                      vec3 eta_channels, vec3 view,
-                                                                      OPENPBR_OUT(vec3) albedo,
+                                                                      vec3 layer_weight, float translucent, float subsurface,
+                                                                      vec2 alpha, float table_alpha, vec3 eta_channels,
+                                                                      vec3 view, OPENPBR_OUT(vec3) albedo,
                                                                       OPENPBR_OUT(vec3) slab_albedo)
 {
     const float mu = view.z;
@@ -304,9 +303,9 @@ OPENPBR_FUNC OpenPBR_DielectricLobe openpbr_interface_lobe_prepare(float layer_w
 {
     const float mu = view.z;
     const vec3 eta_inside = vec3(1.0f) / eta_channels;
-    const float compensation =
-        openpbr_ggx_is_delta(alpha) ? 1.0f
-                                    : 1.0f / max(openpbr_dielectric_interface_albedo(mu, table_alpha, eta_inside.y), 0.05f);
+    const float compensation = openpbr_ggx_is_delta(alpha)
+                                   ? 1.0f
+                                   : 1.0f / max(openpbr_dielectric_interface_albedo(mu, table_alpha, eta_inside.y), 0.05f);
     const float weight = layer_weight * compensation;
     return openpbr_dielectric_lobe_init(vec3(weight), exit_factor * weight, alpha, eta_inside, true,
                                         OPENPBR_LOBE_ID_INTERFACE_FROM_INSIDE, view);

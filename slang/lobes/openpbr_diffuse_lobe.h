@@ -17,8 +17,8 @@
 #include "../math/openpbr_warps.h"
 #include "../openpbr_resolved_inputs.h"
 
-#define OPENPBR_EON_C1 0.28779763f   // 1/2 - 2/(3 pi)
-#define OPENPBR_EON_C2 0.07252938f   // 2/3 - 28/(15 pi)
+#define OPENPBR_EON_C1 0.28779763f  // 1/2 - 2/(3 pi)
+#define OPENPBR_EON_C2 0.07252938f  // 2/3 - 28/(15 pi)
 
 OPENPBR_NAMESPACE_BEGIN
 

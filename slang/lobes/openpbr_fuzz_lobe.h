@@ -63,7 +63,8 @@
 #define OPENPBR_FUZZ_LTC_MODE_BUFFER 1
 #elif defined(OPENPBR_LUT_MODE_TEXTURE)
 #define OPENPBR_FUZZ_LTC_MODE_TEXTURE 1
-#elif defined(OPENPBR_LANGUAGE_TARGET_SLANG) || defined(OPENPBR_LANGUAGE_TARGET_GLSL) || defined(OPENPBR_LANGUAGE_TARGET_HLSL)
+#elif defined(OPENPBR_LANGUAGE_TARGET_SLANG) || defined(OPENPBR_LANGUAGE_TARGET_GLSL) || \
+    defined(OPENPBR_LANGUAGE_TARGET_HLSL)
 #define OPENPBR_FUZZ_LTC_MODE_BUFFER 1
 #else
 #define OPENPBR_FUZZ_LTC_MODE_ARRAY 1
@@ -96,8 +97,8 @@ __constant__ float openpbr_fuzz_ltc_data_device[OPENPBR_FUZZ_LTC_TOTAL_COUNT] = 
 static const float openpbr_fuzz_ltc_data_host[OPENPBR_FUZZ_LTC_TOTAL_COUNT] = {
 #include "../generated/openpbr_fuzz_ltc_values.inc"
 };
-}
-// __host__ __device__ functions see the array of the side they are compiled for.
+}  // namespace openpbr
+   // __host__ __device__ functions see the array of the side they are compiled for.
 #ifdef __CUDA_ARCH__
 #define OPENPBR_FUZZ_LTC_FETCH(index) openpbr_fuzz_ltc_data_device[index]
 #else
@@ -113,16 +114,18 @@ namespace openpbr {
 inline constexpr float openpbr_fuzz_ltc_data[OPENPBR_FUZZ_LTC_TOTAL_COUNT] = {
 #include "../generated/openpbr_fuzz_ltc_values.inc"
 };
-}
-// Qualified: a host interop layer (OPENPBR_USE_CUSTOM_INTEROP) may put the BSDF in another
-// namespace; the shared table stays in openpbr.
+}  // namespace openpbr
+   // Qualified: a host interop layer (OPENPBR_USE_CUSTOM_INTEROP) may put the BSDF in another
+   // namespace; the shared table stays in openpbr.
 #define OPENPBR_FUZZ_LTC_FETCH(index) ::openpbr::openpbr_fuzz_ltc_data[index]
 #endif
 #elif defined(OPENPBR_FUZZ_LTC_MODE_BUFFER)
 #if defined(OPENPBR_LANGUAGE_TARGET_SLANG)
-[[vk::binding(OPENPBR_FUZZ_LTC_BINDING, 0)]] StructuredBuffer<float> openpbr_fuzz_ltc_data : register(OPENPBR_CONCATENATE(t, OPENPBR_FUZZ_LTC_BINDING));
+[[vk::binding(OPENPBR_FUZZ_LTC_BINDING, 0)]] StructuredBuffer<float> openpbr_fuzz_ltc_data
+    : register(OPENPBR_CONCATENATE(t, OPENPBR_FUZZ_LTC_BINDING));
 #elif defined(OPENPBR_LANGUAGE_TARGET_HLSL)
-StructuredBuffer<float> openpbr_fuzz_ltc_data : register(OPENPBR_CONCATENATE(t, OPENPBR_FUZZ_LTC_BINDING), OPENPBR_CONCATENATE(space, OPENPBR_HLSL_REGISTER_SPACE));
+StructuredBuffer<float> openpbr_fuzz_ltc_data
+    : register(OPENPBR_CONCATENATE(t, OPENPBR_FUZZ_LTC_BINDING), OPENPBR_CONCATENATE(space, OPENPBR_HLSL_REGISTER_SPACE));
 #elif defined(OPENPBR_LANGUAGE_TARGET_GLSL)
 layout(std430, set = 0, binding = OPENPBR_FUZZ_LTC_BINDING) readonly buffer OpenPBR_FuzzLtcBuffer
 {
@@ -132,7 +135,7 @@ layout(std430, set = 0, binding = OPENPBR_FUZZ_LTC_BINDING) readonly buffer Open
 namespace openpbr {
 // Set by the application before any init, e.g. to the contents of openpbr_fuzz_ltc.bin.
 inline const float* openpbr_fuzz_ltc_data = nullptr;
-}
+}  // namespace openpbr
 #else
 #error "OPENPBR_FUZZ_LTC_MODE_BUFFER is not available for this language; use OPENPBR_FUZZ_LTC_MODE_ARRAY"
 #endif
@@ -145,12 +148,12 @@ OPENPBR_NAMESPACE_BEGIN
 
 struct OpenPBR_FuzzLobe
 {
-    vec3 weight;         // weight * fuzz_color * R(mu_o, alpha): the albedo and the constant sample weight
-    float ltc_a;         // M^-1 = [[a, 0, b], [0, a, 0], [0, 0, 1]] in the view's azimuthal frame
+    vec3 weight;  // weight * fuzz_color * R(mu_o, alpha): the albedo and the constant sample weight
+    float ltc_a;  // M^-1 = [[a, 0, b], [0, a, 0], [0, 0, 1]] in the view's azimuthal frame
     float ltc_b;
     float cos_phi_view;  // the lobe frame's x axis is (cos_phi_view, sin_phi_view, 0)
     float sin_phi_view;
-    bool is_active;      // false for a view below the surface: no reflection, no samples
+    bool is_active;  // false for a view below the surface: no reflection, no samples
 };
 
 #if !OPENPBR_USE_TEXTURE_LUTS
@@ -249,8 +252,7 @@ OPENPBR_FUNC OpenPBR_FuzzLobe openpbr_fuzz_lobe_empty()
 // A direction of the shading frame expressed in the lobe frame (rotation about z by -phi_view).
 OPENPBR_FUNC vec3 openpbr_fuzz_to_lobe_frame(OPENPBR_IN(OpenPBR_FuzzLobe) lobe, vec3 w)
 {
-    return vec3(lobe.cos_phi_view * w.x + lobe.sin_phi_view * w.y,
-                lobe.cos_phi_view * w.y - lobe.sin_phi_view * w.x, w.z);
+    return vec3(lobe.cos_phi_view * w.x + lobe.sin_phi_view * w.y, lobe.cos_phi_view * w.y - lobe.sin_phi_view * w.x, w.z);
 }
 
 OPENPBR_FUNC float openpbr_fuzz_lobe_pdf(OPENPBR_IN(OpenPBR_FuzzLobe) lobe, vec3 view, vec3 light)
@@ -283,10 +285,10 @@ OPENPBR_FUNC OpenPBR_LobeSample openpbr_fuzz_lobe_sample(OPENPBR_IN(OpenPBR_Fuzz
     {
         return openpbr_make_no_lobe_sample();  // the horizon, where the density is 0
     }
-    const vec3 light = vec3(lobe.cos_phi_view * w.x - lobe.sin_phi_view * w.y,
-                            lobe.sin_phi_view * w.x + lobe.cos_phi_view * w.y, w.z);
-    return openpbr_make_lobe_sample(light,
-                                    openpbr_lobe_type(OPENPBR_LOBE_ID_FUZZ, OPENPBR_LOBE_TYPE_REFLECTION | OPENPBR_LOBE_TYPE_GLOSSY));
+    const vec3 light =
+        vec3(lobe.cos_phi_view * w.x - lobe.sin_phi_view * w.y, lobe.sin_phi_view * w.x + lobe.cos_phi_view * w.y, w.z);
+    return openpbr_make_lobe_sample(
+        light, openpbr_lobe_type(OPENPBR_LOBE_ID_FUZZ, OPENPBR_LOBE_TYPE_REFLECTION | OPENPBR_LOBE_TYPE_GLOSSY));
 }
 
 OPENPBR_FUNC vec3 openpbr_fuzz_lobe_albedo(OPENPBR_IN(OpenPBR_FuzzLobe) lobe, vec3 view)

@@ -53,8 +53,8 @@ OPENPBR_NAMESPACE_BEGIN
 
 struct OpenPBR_LobeSample
 {
-    vec3 direction;       // sampled light direction, local frame
-    vec3 delta_weight;    // for delta lobes only: the lobe's value / its discrete probability 1
+    vec3 direction;                  // sampled light direction, local frame
+    vec3 delta_weight;               // for delta lobes only: the lobe's value / its discrete probability 1
     OpenPBR_BsdfLobeType lobe_type;  // OPENPBR_LOBE_TYPE_NONE when no sample was produced
 };
 
@@ -102,10 +102,7 @@ OPENPBR_FUNC bool openpbr_lobe_type_is_specular(OpenPBR_BsdfLobeType lobe_type)
     return (lobe_type & OPENPBR_LOBE_TYPE_SPECULAR) != 0u;
 }
 // The lobe's identity (OPENPBR_LOBE_ID_*), 0 for OPENPBR_LOBE_TYPE_NONE.
-OPENPBR_FUNC uint openpbr_lobe_type_id(OpenPBR_BsdfLobeType lobe_type)
-{
-    return lobe_type >> OPENPBR_LOBE_ID_SHIFT;
-}
+OPENPBR_FUNC uint openpbr_lobe_type_id(OpenPBR_BsdfLobeType lobe_type) { return lobe_type >> OPENPBR_LOBE_ID_SHIFT; }
 
 OPENPBR_NAMESPACE_END
 

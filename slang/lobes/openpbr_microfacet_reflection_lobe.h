@@ -26,19 +26,21 @@ OPENPBR_NAMESPACE_BEGIN
 
 struct OpenPBR_MicrofacetReflectionLobe
 {
-    vec3 weight;           // layering weight times energy compensation
-    vec2 alpha;            // (alpha_t, alpha_b)
-    bool is_delta;         // mirror: eval and pdf are 0, sample is deterministic
-    float lambda_view;     // Smith Lambda of the view, shared by every eval
-    float g1_view;         // 1 / (1 + lambda_view)
+    vec3 weight;               // layering weight times energy compensation
+    vec2 alpha;                // (alpha_t, alpha_b)
+    bool is_delta;             // mirror: eval and pdf are 0, sample is deterministic
+    float lambda_view;         // Smith Lambda of the view, shared by every eval
+    float g1_view;             // 1 / (1 + lambda_view)
     float inverse_4_cos_view;  // 1 / (4 wo.z)
     OpenPBR_Fresnel fresnel;
-    uint lobe_id;          // OPENPBR_LOBE_ID_SPECULAR_REFLECTION, _METAL, _COAT or _SPECULAR_TRANSMISSION
-    float hemisphere_sign; // +1 reflection, -1 mirrored into the lower hemisphere
+    uint lobe_id;           // OPENPBR_LOBE_ID_SPECULAR_REFLECTION, _METAL, _COAT or _SPECULAR_TRANSMISSION
+    float hemisphere_sign;  // +1 reflection, -1 mirrored into the lower hemisphere
 };
 
-OPENPBR_FUNC OpenPBR_MicrofacetReflectionLobe openpbr_microfacet_reflection_lobe_init(
-    vec3 weight, vec2 alpha, OPENPBR_IN(OpenPBR_Fresnel) fresnel, uint lobe_id, float hemisphere_sign, vec3 view)
+OPENPBR_FUNC OpenPBR_MicrofacetReflectionLobe openpbr_microfacet_reflection_lobe_init(vec3 weight, vec2 alpha,
+                                                                                      OPENPBR_IN(OpenPBR_Fresnel) fresnel,
+                                                                                      uint lobe_id, float hemisphere_sign,
+                                                                                      vec3 view)
 {
     OpenPBR_MicrofacetReflectionLobe lobe;
     lobe.weight = weight;
@@ -74,8 +76,8 @@ OPENPBR_FUNC OpenPBR_MicrofacetReflectionLobe openpbr_microfacet_reflection_lobe
 // coat and the thin-walled transmission: spec "Thin-film iridescence" puts the film on the base
 // only): the film code is then not compiled into that call site (GPU compilers inline every
 // call, and the film is the largest function of the BSDF).
-OPENPBR_FUNC vec3 openpbr_microfacet_reflection_lobe_eval_with(OPENPBR_IN(OpenPBR_MicrofacetReflectionLobe) lobe,
-                                                               vec3 view, vec3 light_direction, bool with_film)
+OPENPBR_FUNC vec3 openpbr_microfacet_reflection_lobe_eval_with(OPENPBR_IN(OpenPBR_MicrofacetReflectionLobe) lobe, vec3 view,
+                                                               vec3 light_direction, bool with_film)
 {
     const vec3 light = vec3(light_direction.x, light_direction.y, light_direction.z * lobe.hemisphere_sign);
     if (lobe.is_delta || light.z <= 0.0f || view.z <= 0.0f)
@@ -90,8 +92,8 @@ OPENPBR_FUNC vec3 openpbr_microfacet_reflection_lobe_eval_with(OPENPBR_IN(OpenPB
     return lobe.weight * f * (d * g2 * lobe.inverse_4_cos_view);
 }
 
-OPENPBR_FUNC vec3 openpbr_microfacet_reflection_lobe_eval(OPENPBR_IN(OpenPBR_MicrofacetReflectionLobe) lobe,
-                                                          vec3 view, vec3 light_direction)
+OPENPBR_FUNC vec3 openpbr_microfacet_reflection_lobe_eval(OPENPBR_IN(OpenPBR_MicrofacetReflectionLobe) lobe, vec3 view,
+                                                          vec3 light_direction)
 {
     return openpbr_microfacet_reflection_lobe_eval_with(lobe, view, light_direction, true);
 }
@@ -131,8 +133,8 @@ OPENPBR_FUNC vec3 openpbr_microfacet_reflection_lobe_pair_eval(OPENPBR_IN(OpenPB
     return value * (d * g2 * inverse_4_cos_view);
 }
 
-OPENPBR_FUNC float openpbr_microfacet_reflection_lobe_pdf(OPENPBR_IN(OpenPBR_MicrofacetReflectionLobe) lobe,
-                                                          vec3 view, vec3 light_direction)
+OPENPBR_FUNC float openpbr_microfacet_reflection_lobe_pdf(OPENPBR_IN(OpenPBR_MicrofacetReflectionLobe) lobe, vec3 view,
+                                                          vec3 light_direction)
 {
     const vec3 light = vec3(light_direction.x, light_direction.y, light_direction.z * lobe.hemisphere_sign);
     if (lobe.is_delta || light.z <= 0.0f || view.z <= 0.0f)
@@ -145,8 +147,9 @@ OPENPBR_FUNC float openpbr_microfacet_reflection_lobe_pdf(OPENPBR_IN(OpenPBR_Mic
 }
 
 // with_film as for openpbr_microfacet_reflection_lobe_eval_with (the mirror's weight).
-OPENPBR_FUNC OpenPBR_LobeSample openpbr_microfacet_reflection_lobe_sample_with(
-    OPENPBR_IN(OpenPBR_MicrofacetReflectionLobe) lobe, vec3 view, vec2 u, bool with_film)
+OPENPBR_FUNC OpenPBR_LobeSample openpbr_microfacet_reflection_lobe_sample_with(OPENPBR_IN(OpenPBR_MicrofacetReflectionLobe)
+                                                                                   lobe,
+                                                                               vec3 view, vec2 u, bool with_film)
 {
     if (view.z <= 0.0f)
     {
@@ -155,9 +158,9 @@ OPENPBR_FUNC OpenPBR_LobeSample openpbr_microfacet_reflection_lobe_sample_with(
     const uint side = lobe.hemisphere_sign > 0.0f ? OPENPBR_LOBE_TYPE_REFLECTION : OPENPBR_LOBE_TYPE_TRANSMISSION;
     if (lobe.is_delta)
     {
-        OpenPBR_LobeSample mirror = openpbr_make_lobe_sample(
-            vec3(-view.x, -view.y, view.z * lobe.hemisphere_sign),
-            openpbr_lobe_type(lobe.lobe_id, side | OPENPBR_LOBE_TYPE_SPECULAR));
+        OpenPBR_LobeSample mirror =
+            openpbr_make_lobe_sample(vec3(-view.x, -view.y, view.z * lobe.hemisphere_sign),
+                                     openpbr_lobe_type(lobe.lobe_id, side | OPENPBR_LOBE_TYPE_SPECULAR));
         mirror.delta_weight = lobe.weight * (with_film ? openpbr_fresnel_evaluate(lobe.fresnel, view.z)
                                                        : openpbr_fresnel_evaluate_without_film(lobe.fresnel, view.z));
         return mirror;
@@ -173,7 +176,7 @@ OPENPBR_FUNC OpenPBR_LobeSample openpbr_microfacet_reflection_lobe_sample_with(
 }
 
 OPENPBR_FUNC OpenPBR_LobeSample openpbr_microfacet_reflection_lobe_sample(OPENPBR_IN(OpenPBR_MicrofacetReflectionLobe) lobe,
-                                                                         vec3 view, vec2 u)
+                                                                          vec3 view, vec2 u)
 {
     return openpbr_microfacet_reflection_lobe_sample_with(lobe, view, u, true);
 }
@@ -256,9 +259,7 @@ OPENPBR_FUNC vec3 openpbr_film_fresnel_change(OPENPBR_IN(OpenPBR_Fresnel) filmed
             const vec3 microfacet = openpbr_sample_vndf_spherical_cap(view, alpha, u);
             cos_microfacet = dot(view, microfacet);
             const vec3 light = 2.0f * cos_microfacet * microfacet - view;
-            weight = light.z > 0.0f
-                         ? (1.0f + lambda_view) / (1.0f + lambda_view + openpbr_ggx_lambda(light, alpha))
-                         : 0.0f;
+            weight = light.z > 0.0f ? (1.0f + lambda_view) / (1.0f + lambda_view + openpbr_ggx_lambda(light, alpha)) : 0.0f;
         }
         if (weight > 0.0f)
         {
@@ -367,8 +368,8 @@ OPENPBR_FUNC OpenPBR_MicrofacetReflectionLobe openpbr_metal_lobe_prepare(OPENPBR
         openpbr_make_f82_fresnel(metal_f0, inputs.specular_color, vec3(min(inputs.specular_weight, 1.0f)));
     if (film_weight > 0.0f)
     {
-        metal_fresnel = openpbr_add_thin_film(metal_fresnel, film_weight, inputs.thin_film_thickness,
-                                              inputs.thin_film_ior, film_outside_ior);
+        metal_fresnel = openpbr_add_thin_film(metal_fresnel, film_weight, inputs.thin_film_thickness, inputs.thin_film_ior,
+                                              film_outside_ior);
     }
     const vec3 metal_compensation = openpbr_multiple_scattering_compensation(metal_f0, base_lobe_albedo.albedo);
     const OpenPBR_MicrofacetReflectionLobe metal = openpbr_microfacet_reflection_lobe_init(

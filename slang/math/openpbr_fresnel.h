@@ -45,8 +45,8 @@ OPENPBR_FUNC float openpbr_schlick_weight(float cos_theta)
 OPENPBR_FUNC vec3 openpbr_f82_coefficient(vec3 f0, vec3 tint)
 {
     // mu_bar = 1/7: Schlick(mu_bar) = f0 + (1 - f0) (6/7)^5; mu_bar (1 - mu_bar)^6 = 6^6 / 7^7.
-    const float one_minus_mu_bar_5 = 0.46266436f;        // (6/7)^5
-    const float inverse_mu_bar_term = 823543.0f / 46656.0f; // 7^7 / 6^6
+    const float one_minus_mu_bar_5 = 0.46266436f;            // (6/7)^5
+    const float inverse_mu_bar_term = 823543.0f / 46656.0f;  // 7^7 / 6^6
     const vec3 schlick_at_mu_bar = f0 + (vec3(1.0f) - f0) * one_minus_mu_bar_5;
     return schlick_at_mu_bar * (vec3(1.0f) - tint) * inverse_mu_bar_term;
 }
@@ -70,11 +70,11 @@ OPENPBR_FUNC vec3 openpbr_fresnel_f82(vec3 f0, vec3 f82_coefficient, float cos_t
 
 struct OpenPBR_Fresnel
 {
-    uint kind;               // OPENPBR_FRESNEL_DIELECTRIC, _F82 or _NONE
-    float eta;               // dielectric: n_transmitted / n_incident, e.g. 1.5
-    vec3 f0;                 // F82: reflectance at normal incidence (base_weight * base_color)
-    vec3 f82_coefficient;    // F82: from openpbr_f82_coefficient
-    vec3 tint;               // multiplies the result, e.g. specular_color * specular_weight for metals
+    uint kind;             // OPENPBR_FRESNEL_DIELECTRIC, _F82 or _NONE
+    float eta;             // dielectric: n_transmitted / n_incident, e.g. 1.5
+    vec3 f0;               // F82: reflectance at normal incidence (base_weight * base_color)
+    vec3 f82_coefficient;  // F82: from openpbr_f82_coefficient
+    vec3 tint;             // multiplies the result, e.g. specular_color * specular_weight for metals
     // Thin-film iridescence (spec "Thin-film iridescence"): a linear blend of the Fresnel factor
     // with and without the film, by film_weight; 0 = no film (nothing else is read then).
     float film_weight;        // e.g. 0.5
@@ -171,8 +171,8 @@ OPENPBR_FUNC vec3 openpbr_fresnel_evaluate(OPENPBR_IN(OpenPBR_Fresnel) fresnel, 
     }
     // One call for both bases: the film code is compiled once per call site, not twice.
     const vec3 film = openpbr_thin_film_fresnel_model(cos_theta, fresnel.outside_ior, fresnel.film_ior,
-                                                      fresnel.kind == OPENPBR_FRESNEL_F82, fresnel.base_ior,
-                                                      fresnel.base_n, fresnel.base_k, fresnel.film_thickness_um);
+                                                      fresnel.kind == OPENPBR_FRESNEL_F82, fresnel.base_ior, fresnel.base_n,
+                                                      fresnel.base_k, fresnel.film_thickness_um);
     return fresnel.tint * mix(plain, film, fresnel.film_weight);
 }
 

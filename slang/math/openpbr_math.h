@@ -104,8 +104,7 @@ OPENPBR_FUNC vec3 openpbr_clamp_finite(vec3 v, float low, float high)
 OPENPBR_FUNC vec3 openpbr_safe_normalize(vec3 v, vec3 fallback)
 {
     const float length_squared = dot(v, v);
-    return (length_squared > 1e-30f && length_squared <= OPENPBR_FLOAT_MAX) ? v * openpbr_rsqrt(length_squared)
-                                                                              : fallback;
+    return (length_squared > 1e-30f && length_squared <= OPENPBR_FLOAT_MAX) ? v * openpbr_rsqrt(length_squared) : fallback;
 }
 
 // Luminance with Rec.709 / linear sRGB primaries; used only for sampling decisions, never

@@ -133,10 +133,7 @@ OPENPBR_NAMESPACE_BEGIN
 
 // ---- Complex numbers as vec2 (x = real part, y = imaginary part) ----------------------------
 
-OPENPBR_FUNC vec2 openpbr_complex_multiply(vec2 a, vec2 b)
-{
-    return vec2(a.x * b.x - a.y * b.y, a.x * b.y + a.y * b.x);
-}
+OPENPBR_FUNC vec2 openpbr_complex_multiply(vec2 a, vec2 b) { return vec2(a.x * b.x - a.y * b.y, a.x * b.y + a.y * b.x); }
 
 OPENPBR_FUNC float openpbr_complex_norm_squared(vec2 a) { return a.x * a.x + a.y * a.y; }
 
@@ -180,15 +177,15 @@ struct OpenPBR_ThinFilmStack
 {
     OpenPBR_ThinFilmPolarization s;
     OpenPBR_ThinFilmPolarization p;
-    bool film_is_evanescent;         // n_o sin(theta) >= n_f: no propagating wave in the film
+    bool film_is_evanescent;  // n_o sin(theta) >= n_f: no propagating wave in the film
     float thickness_um;
     float optical_path_difference_um;  // 2 n_f d cos_f (0 when evanescent)
-    float film_normal_term;          // (n_f cos_f)^2 = n_f^2 - (n_o sin theta)^2, any sign
+    float film_normal_term;            // (n_f cos_f)^2 = n_f^2 - (n_o sin theta)^2, any sign
     float film_ior_squared;
-    float outside_admittance_s;      // n_o cos_o
-    float outside_admittance_p;      // cos_o / n_o
-    vec2 base_admittance_s;          // N cos_b
-    vec2 base_admittance_p;          // cos_b / N
+    float outside_admittance_s;  // n_o cos_o
+    float outside_admittance_p;  // cos_o / n_o
+    vec2 base_admittance_s;      // N cos_b
+    vec2 base_admittance_p;      // cos_b / N
 };
 
 // Series data of one polarization from the two interfaces' Fresnel coefficients written as
@@ -215,8 +212,8 @@ OPENPBR_FUNC OpenPBR_ThinFilmPolarization openpbr_thin_film_polarization(float a
     polarization.amplitude = -transmittance_12 * transmittance_23 * inverse_denominator;
     polarization.rho = -r12 * r23;
     // 1 + r12 r23 = 2 (a1 a2 + b1 b2) / ((a1 + b1)(a2 + b2)).
-    polarization.one_minus_rho = openpbr_complex_multiply(2.0f * (a1 * a2 + b1 * b2), conjugate_sum_2) *
-                                 (inverse_sum_2_norm * inverse_sum_1);
+    polarization.one_minus_rho =
+        openpbr_complex_multiply(2.0f * (a1 * a2 + b1 * b2), conjugate_sum_2) * (inverse_sum_2_norm * inverse_sum_1);
     // |rho|^2 = R12 R23 and 1 - |rho| = (1 - R12 R23) / (1 + |rho|), without cancellation.
     const float rho_squared = reflectance_12 * reflectance_23;
     const float rho_magnitude = sqrt(rho_squared);
@@ -231,8 +228,8 @@ OPENPBR_FUNC OpenPBR_ThinFilmPolarization openpbr_thin_film_polarization(float a
 // (the result is 1); a conductor's complex N cos_b never vanishes unless k = 0, and a k = 0
 // base beyond its critical angle gives R23 = 1, T23 = 0 and so a total reflection here too.
 OPENPBR_FUNC OpenPBR_ThinFilmStack openpbr_thin_film_stack(float cos_o, float n_o, float n_f, float thickness_um,
-                                                          float film_normal_term, vec2 base_ior_squared,
-                                                          vec2 base_normal_term)
+                                                           float film_normal_term, vec2 base_ior_squared,
+                                                           vec2 base_normal_term)
 {
     OpenPBR_ThinFilmStack stack;
     stack.film_is_evanescent = film_normal_term <= 0.0f;
@@ -251,8 +248,7 @@ OPENPBR_FUNC OpenPBR_ThinFilmStack openpbr_thin_film_stack(float cos_o, float n_
     // multiplied through by N so that only N^2 and N cos_b appear.
     const float film_term = n_f * cos_f;
     stack.s = openpbr_thin_film_polarization(n_o * cos_o, film_term, vec2(film_term, 0.0f), base_normal_term);
-    stack.p = openpbr_thin_film_polarization(n_f * cos_o, n_o * cos_f, base_ior_squared * cos_f,
-                                             n_f * base_normal_term);
+    stack.p = openpbr_thin_film_polarization(n_f * cos_o, n_o * cos_f, base_ior_squared * cos_f, n_f * base_normal_term);
     return stack;
 }
 
@@ -297,9 +293,9 @@ OPENPBR_FUNC float openpbr_thin_film_evanescent_reflectance(OPENPBR_IN(OpenPBR_T
     const float s_common = k0_d * tanh_ratio;
     const float r_s = openpbr_thin_film_exact_polarization(1.0f, s_common, s_common * stack.film_normal_term,
                                                            stack.outside_admittance_s, stack.base_admittance_s);
-    const float r_p = openpbr_thin_film_exact_polarization(
-        1.0f, s_common * stack.film_ior_squared, s_common * stack.film_normal_term / stack.film_ior_squared,
-        stack.outside_admittance_p, stack.base_admittance_p);
+    const float r_p = openpbr_thin_film_exact_polarization(1.0f, s_common * stack.film_ior_squared,
+                                                           s_common * stack.film_normal_term / stack.film_ior_squared,
+                                                           stack.outside_admittance_p, stack.base_admittance_p);
     return 0.5f * (r_s + r_p);
 }
 
@@ -312,8 +308,7 @@ struct OpenPBR_ThinFilmLobePhase
     float damping;          // g_j = exp(-(2 pi OPD sigma_j)^2 / 2)
 };
 
-OPENPBR_FUNC OpenPBR_ThinFilmLobePhase openpbr_thin_film_lobe_phase(float optical_path_difference_um, float nu,
-                                                                   float sigma)
+OPENPBR_FUNC OpenPBR_ThinFilmLobePhase openpbr_thin_film_lobe_phase(float optical_path_difference_um, float nu, float sigma)
 {
     // Half the phase, reduced to [0, pi): the phasor and 1 - phasor are then built from
     // sin and cos of it, 1 - e^{i phi} = 2 sin^2(phi/2) - i sin(phi).
@@ -343,9 +338,9 @@ OPENPBR_FUNC float openpbr_thin_film_lobe_tail(OPENPBR_IN(OpenPBR_ThinFilmPolari
     const float damping_8 = damping_4 * damping_4;
     const float damping_16 = damping_8 * damping_8;
     // 1 - w z = (1 - rho) + rho (1 - phasor) + (1 - w) z, each part without cancellation.
-    const vec2 one_minus_tail_ratio_z =
-        polarization.one_minus_rho + openpbr_complex_multiply(polarization.rho, phase.one_minus_phasor) +
-        (1.0f - damping_8 * damping_4 * damping_squared * phase.damping) * round_trip;
+    const vec2 one_minus_tail_ratio_z = polarization.one_minus_rho +
+                                        openpbr_complex_multiply(polarization.rho, phase.one_minus_phasor) +
+                                        (1.0f - damping_8 * damping_4 * damping_squared * phase.damping) * round_trip;
     const vec2 round_trip_4 = openpbr_complex_multiply(round_trip_squared, round_trip_squared);
     return damping_16 * damping_8 * phase.damping *
            openpbr_complex_divide(openpbr_complex_multiply(round_trip_4, round_trip), one_minus_tail_ratio_z).x;
@@ -373,7 +368,7 @@ struct OpenPBR_ThinFilmInputs
 };
 
 OPENPBR_FUNC OpenPBR_ThinFilmInputs openpbr_thin_film_inputs(float cos_theta, float eta_outside, float eta_film,
-                                                            float thickness_um)
+                                                             float thickness_um)
 {
     OpenPBR_ThinFilmInputs inputs;
     inputs.cos_o = openpbr_clamp_finite(cos_theta, 0.0f, 1.0f);
@@ -394,7 +389,7 @@ struct OpenPBR_ThinFilmBase
 
 // Conductor channel of complex IOR N = n + i k.
 OPENPBR_FUNC OpenPBR_ThinFilmBase openpbr_thin_film_conductor_base(OPENPBR_IN(OpenPBR_ThinFilmInputs) inputs, float n,
-                                                                  float k)
+                                                                   float k)
 {
     const float n_clamped = openpbr_clamp_finite(n, OPENPBR_THIN_FILM_MIN_IOR, OPENPBR_THIN_FILM_MAX_IOR);
     const float k_clamped = openpbr_clamp_finite(k, 0.0f, OPENPBR_THIN_FILM_MAX_EXTINCTION);
@@ -407,7 +402,7 @@ OPENPBR_FUNC OpenPBR_ThinFilmBase openpbr_thin_film_conductor_base(OPENPBR_IN(Op
 }
 
 OPENPBR_FUNC OpenPBR_ThinFilmStack openpbr_thin_film_conductor_stack(OPENPBR_IN(OpenPBR_ThinFilmInputs) inputs, float n,
-                                                                    float k)
+                                                                     float k)
 {
     const OpenPBR_ThinFilmBase base = openpbr_thin_film_conductor_base(inputs, n, k);
     return openpbr_thin_film_stack(inputs.cos_o, inputs.n_o, inputs.n_f, inputs.thickness_um, inputs.film_normal_term,
@@ -515,10 +510,10 @@ OPENPBR_FUNC OpenPBR_ThinFilmHarmonics openpbr_thin_film_harmonics(float optical
         const vec2 phasor_3 = openpbr_complex_multiply(phasor_2, phase.phasor);
         const vec2 phasor_4 = openpbr_complex_multiply(phasor_2, phasor_2);
         const float damping_16 = openpbr_square(damping_4 * damping_4);
-        const vec3 weight_1 = lobe.weight * damping;                          // W g
-        const vec3 weight_2 = lobe.weight * damping_4;                        // W g^4
+        const vec3 weight_1 = lobe.weight * damping;                            // W g
+        const vec3 weight_2 = lobe.weight * damping_4;                          // W g^4
         const vec3 weight_3 = lobe.weight * (damping_4 * damping_4 * damping);  // W g^9
-        const vec3 weight_4 = lobe.weight * damping_16;                       // W g^16
+        const vec3 weight_4 = lobe.weight * damping_16;                         // W g^16
         harmonics.real_1 += weight_1 * phase.phasor.x;
         harmonics.imaginary_1 += weight_1 * phase.phasor.y;
         harmonics.real_2 += weight_2 * phasor_2.x;
@@ -557,11 +552,11 @@ OPENPBR_FUNC vec3 openpbr_thin_film_stack_reflectance(OPENPBR_IN(OpenPBR_ThinFil
     vec3 rgb = vec3(0.0f);
     if (!evanescent)
     {
-        rgb = 0.5f * (openpbr_thin_film_harmonic_sum(stack.s, harmonics) +
-                      openpbr_thin_film_harmonic_sum(stack.p, harmonics));
+        rgb =
+            0.5f * (openpbr_thin_film_harmonic_sum(stack.s, harmonics) + openpbr_thin_film_harmonic_sum(stack.p, harmonics));
     }
-    if (evanescent || max(stack.s.tail_bound, stack.p.tail_bound) * harmonics.largest_tail_damping >
-                          OPENPBR_THIN_FILM_TRUNCATION_ERROR)
+    if (evanescent ||
+        max(stack.s.tail_bound, stack.p.tail_bound) * harmonics.largest_tail_damping > OPENPBR_THIN_FILM_TRUNCATION_ERROR)
     {
         for (int lobe_index = 0; lobe_index < 6; ++lobe_index)
         {
@@ -604,8 +599,8 @@ struct OpenPBR_ThinFilmBasePair
 // One loop over the stacks whose base differs (index 0 the dielectric, 1-3 the conductor's
 // channels), so the stack code is compiled once per call site.
 OPENPBR_FUNC OpenPBR_ThinFilmBasePair openpbr_thin_film_fresnel_bases(OPENPBR_IN(OpenPBR_ThinFilmInputs) inputs,
-                                                                     bool with_dielectric, float dielectric_ior,
-                                                                     bool with_conductor, vec3 base_n, vec3 base_k)
+                                                                      bool with_dielectric, float dielectric_ior,
+                                                                      bool with_conductor, vec3 base_n, vec3 base_k)
 {
     OpenPBR_ThinFilmBasePair pair;
     pair.dielectric = vec3(with_dielectric ? 1.0f : 0.0f);
@@ -636,8 +631,9 @@ OPENPBR_FUNC OpenPBR_ThinFilmBasePair openpbr_thin_film_fresnel_bases(OPENPBR_IN
             base = openpbr_thin_film_conductor_base(inputs, openpbr_thin_film_channel_of(base_n, channel),
                                                     openpbr_thin_film_channel_of(base_k, channel));
         }
-        const OpenPBR_ThinFilmStack stack = openpbr_thin_film_stack(inputs.cos_o, inputs.n_o, inputs.n_f, inputs.thickness_um,
-                                                                   inputs.film_normal_term, base.ior_squared, base.normal_term);
+        const OpenPBR_ThinFilmStack stack =
+            openpbr_thin_film_stack(inputs.cos_o, inputs.n_o, inputs.n_f, inputs.thickness_um, inputs.film_normal_term,
+                                    base.ior_squared, base.normal_term);
         const vec3 rgb = openpbr_thin_film_stack_reflectance(stack, harmonics);
         if (stack_index == 0)
         {
@@ -662,8 +658,8 @@ OPENPBR_FUNC vec3 openpbr_thin_film_fresnel_full(float cos_theta, float eta_outs
                                                  float base_ior, vec3 base_n, vec3 base_k, float thickness_um)
 {
     const OpenPBR_ThinFilmBasePair pair =
-        openpbr_thin_film_fresnel_bases(openpbr_thin_film_inputs(cos_theta, eta_outside, eta_film, thickness_um),
-                                        !conductor, base_ior, conductor, base_n, base_k);
+        openpbr_thin_film_fresnel_bases(openpbr_thin_film_inputs(cos_theta, eta_outside, eta_film, thickness_um), !conductor,
+                                        base_ior, conductor, base_n, base_k);
     return conductor ? pair.conductor : pair.dielectric;
 }
 
@@ -671,8 +667,8 @@ OPENPBR_FUNC vec3 openpbr_thin_film_fresnel_full(float cos_theta, float eta_outs
 // 1.5 base). Thickness in micrometres (OpenPBR's unit). Returns 1 under total internal
 // reflection at the base (n_o sin theta >= n_b); an evanescent film (n_o sin theta >= n_f) is
 // handled exactly, including light tunnelling through a thin one.
-OPENPBR_FUNC vec3 openpbr_thin_film_fresnel_dielectric(float cos_theta, float eta_outside, float eta_film,
-                                                       float eta_base, float thickness_um)
+OPENPBR_FUNC vec3 openpbr_thin_film_fresnel_dielectric(float cos_theta, float eta_outside, float eta_film, float eta_base,
+                                                       float thickness_um)
 {
     return openpbr_thin_film_fresnel_full(cos_theta, eta_outside, eta_film, false, eta_base, vec3(1.0f), vec3(0.0f),
                                           thickness_um);
@@ -734,8 +730,8 @@ OPENPBR_FUNC vec3 openpbr_thin_film_fresnel_dielectric_fast(float cos_theta, flo
                                 0.0f, 1.0f);
 }
 
-OPENPBR_FUNC vec3 openpbr_thin_film_fresnel_conductor_fast(float cos_theta, float eta_outside, float eta_film,
-                                                           vec3 base_n, vec3 base_k, float thickness_um)
+OPENPBR_FUNC vec3 openpbr_thin_film_fresnel_conductor_fast(float cos_theta, float eta_outside, float eta_film, vec3 base_n,
+                                                           vec3 base_k, float thickness_um)
 {
     const OpenPBR_ThinFilmInputs inputs = openpbr_thin_film_inputs(cos_theta, eta_outside, eta_film, thickness_um);
     if (inputs.cos_o <= 0.0f)
@@ -747,8 +743,7 @@ OPENPBR_FUNC vec3 openpbr_thin_film_fresnel_conductor_fast(float cos_theta, floa
     return openpbr_clamp_finite(
         vec3(openpbr_thin_film_fast_channel(openpbr_thin_film_conductor_stack(inputs, base_n.x, base_k.x), nu.x, sigma.x),
              openpbr_thin_film_fast_channel(openpbr_thin_film_conductor_stack(inputs, base_n.y, base_k.y), nu.y, sigma.y),
-             openpbr_thin_film_fast_channel(openpbr_thin_film_conductor_stack(inputs, base_n.z, base_k.z), nu.z,
-                                            sigma.z)),
+             openpbr_thin_film_fast_channel(openpbr_thin_film_conductor_stack(inputs, base_n.z, base_k.z), nu.z, sigma.z)),
         0.0f, 1.0f);
 }
 
@@ -770,8 +765,9 @@ OPENPBR_FUNC vec3 openpbr_thin_film_fresnel_model(float cos_theta, float eta_out
                                                   float base_ior, vec3 base_n, vec3 base_k, float thickness_um)
 {
 #if OPENPBR_THIN_FILM_MODEL == OPENPBR_THIN_FILM_MODEL_FAST
-    return conductor ? openpbr_thin_film_fresnel_conductor_fast(cos_theta, eta_outside, eta_film, base_n, base_k, thickness_um)
-                     : openpbr_thin_film_fresnel_dielectric_fast(cos_theta, eta_outside, eta_film, base_ior, thickness_um);
+    return conductor
+               ? openpbr_thin_film_fresnel_conductor_fast(cos_theta, eta_outside, eta_film, base_n, base_k, thickness_um)
+               : openpbr_thin_film_fresnel_dielectric_fast(cos_theta, eta_outside, eta_film, base_ior, thickness_um);
 #else
     return openpbr_thin_film_fresnel_full(cos_theta, eta_outside, eta_film, conductor, base_ior, base_n, base_k,
                                           thickness_um);
@@ -809,8 +805,8 @@ OPENPBR_FUNC vec3 openpbr_gulbrandsen_n(vec3 r, vec3 g)
 OPENPBR_FUNC vec3 openpbr_gulbrandsen_k(vec3 r, vec3 n)
 {
     const vec3 reflectivity = openpbr_clamp_finite(r, 0.0f, 0.9999f);
-    const vec3 k_squared = (reflectivity * openpbr_square(n + vec3(1.0f)) - openpbr_square(n - vec3(1.0f))) /
-                           (vec3(1.0f) - reflectivity);
+    const vec3 k_squared =
+        (reflectivity * openpbr_square(n + vec3(1.0f)) - openpbr_square(n - vec3(1.0f))) / (vec3(1.0f) - reflectivity);
     return sqrt(max(k_squared, vec3(0.0f)));
 }
 

@@ -156,8 +156,8 @@ int main(int argc, char** argv)
     batch.lut_count = lut.size();
     batch.fuzz_ltc = upload(fuzz_ltc);
     batch.fuzz_ltc_count = fuzz_ltc.size();
-    if (cudaMalloc(&batch.results, result_floats * sizeof(float)) != cudaSuccess || !batch.queries ||
-        !batch.materials || !batch.lut || !batch.fuzz_ltc)
+    if (cudaMalloc(&batch.results, result_floats * sizeof(float)) != cudaSuccess || !batch.queries || !batch.materials ||
+        !batch.lut || !batch.fuzz_ltc)
     {
         std::fprintf(stderr, "openpbr_cuda_conformance: device allocation failed\n");
         return 1;
@@ -173,8 +173,8 @@ int main(int argc, char** argv)
         std::vector<float> results(result_floats);
         if (error == cudaSuccess)
         {
-            const cudaError_t copy = cudaMemcpy(results.data(), batch.results, result_floats * sizeof(float),
-                                                cudaMemcpyDeviceToHost);
+            const cudaError_t copy =
+                cudaMemcpy(results.data(), batch.results, result_floats * sizeof(float), cudaMemcpyDeviceToHost);
             if (copy != cudaSuccess)
             {
                 std::printf("%s: error: %s\n", path.name, cudaGetErrorString(copy));

@@ -23,9 +23,9 @@ struct DeviceBatch
     const float* queries = nullptr;
     const float* materials = nullptr;
     std::size_t material_floats = 0;
-    const float* lut = nullptr;        // the floats of openpbr_lut.bin (slang-cuda only)
+    const float* lut = nullptr;  // the floats of openpbr_lut.bin (slang-cuda only)
     std::size_t lut_count = 0;
-    const float* fuzz_ltc = nullptr;   // the floats of openpbr_fuzz_ltc.bin (slang-cuda only)
+    const float* fuzz_ltc = nullptr;  // the floats of openpbr_fuzz_ltc.bin (slang-cuda only)
     std::size_t fuzz_ltc_count = 0;
     float* results = nullptr;
     unsigned query_count = 0;

@@ -18,8 +18,7 @@ namespace openpbr::cuda_conformance {
 
 namespace {
 
-template <typename T, typename Pointer>
-void bind(StructuredBuffer<T>& buffer, Pointer data, std::size_t count)
+template <typename T, typename Pointer> void bind(StructuredBuffer<T>& buffer, Pointer data, std::size_t count)
 {
     buffer.data = const_cast<T*>(data);
     buffer.count = count;
@@ -43,8 +42,7 @@ int run_slang_conformance(const DeviceBatch& batch)
     bind(block.conformance_queries_0, batch.queries, std::size_t(batch.query_count) * query_floats);
     bind(block.conformance_materials_0, batch.materials, batch.material_floats);
     bind(block.conformance_parameters_0, parameters, 4);
-    bind(block.conformance_results_0, batch.results,
-         std::size_t(batch.query_count) * result_floats);
+    bind(block.conformance_results_0, batch.results, std::size_t(batch.query_count) * result_floats);
     bind(block.openpbr_lut_data_0, batch.lut, batch.lut_count);
     bind(block.openpbr_fuzz_ltc_data_0, batch.fuzz_ltc, batch.fuzz_ltc_count);
     if (status == cudaSuccess)

@@ -86,25 +86,25 @@
 #define OPENPBR_RENDER_FLAG_SKY 4u  // gradient sky; otherwise the uniform environment
 
 // ---- Scene buffer (float) ----
-#define OPENPBR_RENDER_SCENE_CAMERA_POSITION 0   // 3
-#define OPENPBR_RENDER_SCENE_CAMERA_FORWARD 3    // 3, unit
-#define OPENPBR_RENDER_SCENE_CAMERA_RIGHT 6      // 3, scaled by tan(fov / 2)
-#define OPENPBR_RENDER_SCENE_CAMERA_UP 9         // 3, scaled by tan(fov / 2)
+#define OPENPBR_RENDER_SCENE_CAMERA_POSITION 0  // 3
+#define OPENPBR_RENDER_SCENE_CAMERA_FORWARD 3   // 3, unit
+#define OPENPBR_RENDER_SCENE_CAMERA_RIGHT 6     // 3, scaled by tan(fov / 2)
+#define OPENPBR_RENDER_SCENE_CAMERA_UP 9        // 3, scaled by tan(fov / 2)
 #define OPENPBR_RENDER_SCENE_SPHERE_RADIUS 12
-#define OPENPBR_RENDER_SCENE_LIGHT_CENTER 13     // 3
+#define OPENPBR_RENDER_SCENE_LIGHT_CENTER 13  // 3
 #define OPENPBR_RENDER_SCENE_LIGHT_RADIUS 16
-#define OPENPBR_RENDER_SCENE_LIGHT_RADIANCE 17   // 3, render units
-#define OPENPBR_RENDER_SCENE_SKY_ZENITH 20       // 3
-#define OPENPBR_RENDER_SCENE_SKY_HORIZON 23      // 3
-#define OPENPBR_RENDER_SCENE_ENVIRONMENT 26      // 3: uniform environment, or the sky below the horizon
-#define OPENPBR_RENDER_SCENE_SUN_DIRECTION 29    // 3, unit
-#define OPENPBR_RENDER_SCENE_SUN_GLOW 32         // 3
+#define OPENPBR_RENDER_SCENE_LIGHT_RADIANCE 17  // 3, render units
+#define OPENPBR_RENDER_SCENE_SKY_ZENITH 20      // 3
+#define OPENPBR_RENDER_SCENE_SKY_HORIZON 23     // 3
+#define OPENPBR_RENDER_SCENE_ENVIRONMENT 26     // 3: uniform environment, or the sky below the horizon
+#define OPENPBR_RENDER_SCENE_SUN_DIRECTION 29   // 3, unit
+#define OPENPBR_RENDER_SCENE_SUN_GLOW 32        // 3
 #define OPENPBR_RENDER_SCENE_SUN_EXPONENT 35
-#define OPENPBR_RENDER_SCENE_NITS_TO_UNITS 36    // render units per nit (emission)
+#define OPENPBR_RENDER_SCENE_NITS_TO_UNITS 36  // render units per nit (emission)
 #define OPENPBR_RENDER_SCENE_CHECKER_SIZE 37
-#define OPENPBR_RENDER_SCENE_CHECKER_DARK 38     // base_color factor of the dark squares
+#define OPENPBR_RENDER_SCENE_CHECKER_DARK 38         // base_color factor of the dark squares
 #define OPENPBR_RENDER_SCENE_DEFAULT_WAVELENGTHS 39  // 3: OPENPBR_DEFAULT_RGB_WAVELENGTHS_NM
-#define OPENPBR_RENDER_SCENE_COUNT 44  // the header; the object records follow it
+#define OPENPBR_RENDER_SCENE_COUNT 44                // the header; the object records follow it
 
 // ---- Object records (float), after the header: OPENPBR_RENDER_MAX_OBJECTS per cell ----
 // Record of object `slot` of cell `cell`: OPENPBR_RENDER_SCENE_COUNT + (cell *
@@ -112,14 +112,14 @@
 // first slots; radius 0 marks the unused ones.
 #define OPENPBR_RENDER_MAX_OBJECTS 4u
 #define OPENPBR_RENDER_OBJECT_FLOATS 16u
-#define OPENPBR_RENDER_OBJECT_CENTER 0u       // 3
-#define OPENPBR_RENDER_OBJECT_RADIUS 3u       // > 0 for an object, 0 for an unused slot
-#define OPENPBR_RENDER_OBJECT_MATERIAL 4u     // index of its packed material (an integer)
-#define OPENPBR_RENDER_OBJECT_MEDIUM_IOR 5u   // IOR of its interior medium: its specular_ior
-#define OPENPBR_RENDER_OBJECT_ENCLOSES 6u     // 1: a path can be inside it (not thin-walled); 0
-#define OPENPBR_RENDER_OBJECT_DISPERSIVE 7u   // 1: openpbr_needs_rgb_wavelengths of its material
-#define OPENPBR_RENDER_OBJECT_EXTINCTION 8u   // 3: its volume (openpbr_prepare_volume)
-#define OPENPBR_RENDER_OBJECT_ALBEDO 11u      // 3
+#define OPENPBR_RENDER_OBJECT_CENTER 0u      // 3
+#define OPENPBR_RENDER_OBJECT_RADIUS 3u      // > 0 for an object, 0 for an unused slot
+#define OPENPBR_RENDER_OBJECT_MATERIAL 4u    // index of its packed material (an integer)
+#define OPENPBR_RENDER_OBJECT_MEDIUM_IOR 5u  // IOR of its interior medium: its specular_ior
+#define OPENPBR_RENDER_OBJECT_ENCLOSES 6u    // 1: a path can be inside it (not thin-walled); 0
+#define OPENPBR_RENDER_OBJECT_DISPERSIVE 7u  // 1: openpbr_needs_rgb_wavelengths of its material
+#define OPENPBR_RENDER_OBJECT_EXTINCTION 8u  // 3: its volume (openpbr_prepare_volume)
+#define OPENPBR_RENDER_OBJECT_ALBEDO 11u     // 3
 #define OPENPBR_RENDER_OBJECT_ANISOTROPY 14u
 #define OPENPBR_RENDER_OBJECT_VOLUME_PRESENT 15u  // 1 or 0
 
@@ -141,9 +141,9 @@
 #define OPENPBR_RENDER_DIMENSION_LIGHT_U 0u
 #define OPENPBR_RENDER_DIMENSION_LIGHT_V 1u
 #define OPENPBR_RENDER_DIMENSION_EMITTER_U 2u  // which emitter
-#define OPENPBR_RENDER_DIMENSION_BSDF 4u  // 3 numbers
+#define OPENPBR_RENDER_DIMENSION_BSDF 4u       // 3 numbers
 #define OPENPBR_RENDER_DIMENSION_ROULETTE 7u
-#define OPENPBR_RENDER_DIMENSION_VOLUME 8u  // 4 numbers: channel, distance, phase (2)
+#define OPENPBR_RENDER_DIMENSION_VOLUME 8u   // 4 numbers: channel, distance, phase (2)
 #define OPENPBR_RENDER_DIMENSION_CAMERA 12u  // bounce 0 only: 2 jitter, 3 wavelengths
 #define OPENPBR_RENDER_DIMENSIONS_PER_BOUNCE 16u
 
@@ -181,7 +181,8 @@ OPENPBR_FUNC uint openpbr_render_path_key(uint seed, uint pixel, uint sample_ind
 // Uniform in [0, 1 - 2^-24]: 24 bits, exactly representable, never 1.
 OPENPBR_FUNC float openpbr_render_random(uint path_key, uint bounce, uint dimension)
 {
-    const uint bits = openpbr_render_hash(path_key ^ openpbr_render_hash(bounce * OPENPBR_RENDER_DIMENSIONS_PER_BOUNCE + dimension));
+    const uint bits =
+        openpbr_render_hash(path_key ^ openpbr_render_hash(bounce * OPENPBR_RENDER_DIMENSIONS_PER_BOUNCE + dimension));
     return float(bits >> 8u) * (1.0f / 16777216.0f);
 }
 
@@ -192,20 +193,23 @@ OPENPBR_FUNC vec3 openpbr_render_scene_vec3(uint index)
     return vec3(OPENPBR_RENDER_SCENE(index), OPENPBR_RENDER_SCENE(index + 1u), OPENPBR_RENDER_SCENE(index + 2u));
 }
 
-#define OPENPBR_RENDER_UNPACK_VEC3(name)                                                                   \
-    material.name = vec3(OPENPBR_RENDER_MATERIAL(index), OPENPBR_RENDER_MATERIAL(index + 1u),             \
-                         OPENPBR_RENDER_MATERIAL(index + 2u));                                              \
+#define OPENPBR_RENDER_UNPACK_VEC3(name)                                                                                \
+    material.name =                                                                                                     \
+        vec3(OPENPBR_RENDER_MATERIAL(index), OPENPBR_RENDER_MATERIAL(index + 1u), OPENPBR_RENDER_MATERIAL(index + 2u)); \
     index += 3u;
 #define OPENPBR_RENDER_UNPACK_FLOAT(name, default_value, low, high) \
-    material.name = OPENPBR_RENDER_MATERIAL(index); index += 1u;
+    material.name = OPENPBR_RENDER_MATERIAL(index);                 \
+    index += 1u;
 #define OPENPBR_RENDER_UNPACK_COLOR(name, default_r, default_g, default_b, low, high) OPENPBR_RENDER_UNPACK_VEC3(name)
-#define OPENPBR_RENDER_UNPACK_VECTOR2(name, default_x, default_y) \
-    material.name = vec2(OPENPBR_RENDER_MATERIAL(index), OPENPBR_RENDER_MATERIAL(index + 1u)); index += 2u;
-#define OPENPBR_RENDER_UNPACK_BOOL(name, default_value) \
-    material.name = OPENPBR_RENDER_MATERIAL(index) != 0.0f; index += 1u;
-#define OPENPBR_RENDER_UNPACK_BASIS(name, normal_input, tangent_input)                                     \
-    OPENPBR_RENDER_UNPACK_VEC3(name.tangent) OPENPBR_RENDER_UNPACK_VEC3(name.bitangent)                    \
-    OPENPBR_RENDER_UNPACK_VEC3(name.normal)
+#define OPENPBR_RENDER_UNPACK_VECTOR2(name, default_x, default_y)                              \
+    material.name = vec2(OPENPBR_RENDER_MATERIAL(index), OPENPBR_RENDER_MATERIAL(index + 1u)); \
+    index += 2u;
+#define OPENPBR_RENDER_UNPACK_BOOL(name, default_value)     \
+    material.name = OPENPBR_RENDER_MATERIAL(index) != 0.0f; \
+    index += 1u;
+#define OPENPBR_RENDER_UNPACK_BASIS(name, normal_input, tangent_input) \
+    OPENPBR_RENDER_UNPACK_VEC3(name.tangent)                           \
+    OPENPBR_RENDER_UNPACK_VEC3(name.bitangent) OPENPBR_RENDER_UNPACK_VEC3(name.normal)
 
 OPENPBR_FUNC OpenPBR_ResolvedInputs openpbr_render_unpack_material(uint material_index)
 {
@@ -389,9 +393,9 @@ OPENPBR_FUNC OpenPBR_RenderObjectHit openpbr_render_intersect_objects(vec3 origi
     hit.slot = OPENPBR_RENDER_MAX_OBJECTS;
     for (uint slot = 0u; slot < count; ++slot)
     {
-        const float t = openpbr_render_intersect_sphere(origin, direction, openpbr_render_object_center(cell, slot),
-                                                        openpbr_render_object_float(cell, slot, OPENPBR_RENDER_OBJECT_RADIUS),
-                                                        0.0f);
+        const float t =
+            openpbr_render_intersect_sphere(origin, direction, openpbr_render_object_center(cell, slot),
+                                            openpbr_render_object_float(cell, slot, OPENPBR_RENDER_OBJECT_RADIUS), 0.0f);
         if (t > 0.0f && (hit.slot == OPENPBR_RENDER_MAX_OBJECTS || t < hit.t))
         {
             hit.t = t;
@@ -440,8 +444,8 @@ OPENPBR_FUNC OpenPBR_HomogeneousVolume openpbr_render_medium_volume(uint cell, u
 
 // Whether anything (the cell's first `object_count` objects, the ground) blocks the segment
 // from origin to distance.
-OPENPBR_FUNC bool openpbr_render_occluded(vec3 origin, vec3 direction, float distance_value, uint cell,
-                                          uint object_count, float radius, uint flags)
+OPENPBR_FUNC bool openpbr_render_occluded(vec3 origin, vec3 direction, float distance_value, uint cell, uint object_count,
+                                          float radius, uint flags)
 {
     const float limit = distance_value * 0.9999f;
     const OpenPBR_RenderObjectHit hit = openpbr_render_intersect_objects(origin, direction, cell, object_count);
@@ -510,8 +514,7 @@ OPENPBR_FUNC OpenPBR_RenderSample openpbr_render_sample(uint pixel_x, uint pixel
 
     // Camera ray through a jittered point of the pixel, in the cell's [-1, 1]^2 image plane.
     const float local_x = float(pixel_x % cell_size) + openpbr_render_random(key, 0u, OPENPBR_RENDER_DIMENSION_CAMERA);
-    const float local_y =
-        float(pixel_y % cell_size) + openpbr_render_random(key, 0u, OPENPBR_RENDER_DIMENSION_CAMERA + 1u);
+    const float local_y = float(pixel_y % cell_size) + openpbr_render_random(key, 0u, OPENPBR_RENDER_DIMENSION_CAMERA + 1u);
     const float ndc_x = 2.0f * local_x / float(cell_size) - 1.0f;
     const float ndc_y = 1.0f - 2.0f * local_y / float(cell_size);
     vec3 origin = openpbr_render_scene_vec3(OPENPBR_RENDER_SCENE_CAMERA_POSITION);
@@ -533,11 +536,12 @@ OPENPBR_FUNC OpenPBR_RenderSample openpbr_render_sample(uint pixel_x, uint pixel
         sphere_radius = openpbr_render_object_float(cell_index, 0u, OPENPBR_RENDER_OBJECT_RADIUS);
         for (uint slot = 0u; slot < object_count; ++slot)
         {
-            dispersive = dispersive || openpbr_render_object_float(cell_index, slot, OPENPBR_RENDER_OBJECT_DISPERSIVE) != 0.0f;
+            dispersive =
+                dispersive || openpbr_render_object_float(cell_index, slot, OPENPBR_RENDER_OBJECT_DISPERSIVE) != 0.0f;
         }
     }
-    const bool sphere_emissive = object_count > 0u && sphere_inputs.emission_luminance > 0.0f &&
-                                 openpbr_max3(sphere_inputs.emission_color) > 0.0f;
+    const bool sphere_emissive =
+        object_count > 0u && sphere_inputs.emission_luminance > 0.0f && openpbr_max3(sphere_inputs.emission_color) > 0.0f;
 
     // Wavelengths: one per channel, uniform in the channel's box, when an object of the cell is
     // dispersive; otherwise the library's default (the host writes OPENPBR_DEFAULT_RGB_WAVELENGTHS_NM).
@@ -572,7 +576,8 @@ OPENPBR_FUNC OpenPBR_RenderSample openpbr_render_sample(uint pixel_x, uint pixel
         // Closest hit among the objects, the ground and the light (the last two only from outside
         // every object).
         const bool in_medium = inside_set != 0u;
-        const OpenPBR_RenderObjectHit object_hit = openpbr_render_intersect_objects(origin, direction, cell_index, object_count);
+        const OpenPBR_RenderObjectHit object_hit =
+            openpbr_render_intersect_objects(origin, direction, cell_index, object_count);
         uint hit = OPENPBR_RENDER_HIT_NONE;
         float t_hit = OPENPBR_RENDER_FLOAT_MAX;
         if (object_hit.slot < OPENPBR_RENDER_MAX_OBJECTS)
@@ -625,7 +630,8 @@ OPENPBR_FUNC OpenPBR_RenderSample openpbr_render_sample(uint pixel_x, uint pixel
                 const float cos_theta = openpbr_henyey_greenstein_sample_cos_theta(
                     medium.anisotropy, openpbr_render_random(key, step, OPENPBR_RENDER_DIMENSION_VOLUME + 2u));
                 const float sin_theta = sqrt(max(1.0f - cos_theta * cos_theta, 0.0f));
-                const float phi = OPENPBR_RENDER_TWO_PI * openpbr_render_random(key, step, OPENPBR_RENDER_DIMENSION_VOLUME + 3u);
+                const float phi =
+                    OPENPBR_RENDER_TWO_PI * openpbr_render_random(key, step, OPENPBR_RENDER_DIMENSION_VOLUME + 3u);
                 const OpenPBR_Basis frame = openpbr_make_basis(direction);
                 direction = normalize(openpbr_to_world(frame, vec3(sin_theta * cos(phi), sin_theta * sin(phi), cos_theta)));
                 previous_candidates = 0u;
@@ -669,8 +675,8 @@ OPENPBR_FUNC OpenPBR_RenderSample openpbr_render_sample(uint pixel_x, uint pixel
         const vec3 position = origin + direction * t_hit;
         const bool on_object = hit == OPENPBR_RENDER_HIT_OBJECT;
         const uint slot = object_hit.slot;
-        const vec3 normal = on_object ? normalize(position - openpbr_render_object_center(cell_index, slot))
-                                      : vec3(0.0f, 1.0f, 0.0f);
+        const vec3 normal =
+            on_object ? normalize(position - openpbr_render_object_center(cell_index, slot)) : vec3(0.0f, 1.0f, 0.0f);
         const bool encloses =
             on_object && openpbr_render_object_float(cell_index, slot, OPENPBR_RENDER_OBJECT_ENCLOSES) != 0.0f;
         const uint slot_bit = on_object ? (1u << slot) : 0u;
@@ -739,15 +745,15 @@ OPENPBR_FUNC OpenPBR_RenderSample openpbr_render_sample(uint pixel_x, uint pixel
         {
             const float selection = openpbr_render_emitter_selection(candidates);
             const float u_emitter = openpbr_render_random(key, step, OPENPBR_RENDER_DIMENSION_EMITTER_U);
-            const bool pick_sphere = candidates == OPENPBR_RENDER_EMITTER_SPHERE ||
-                                     (candidates == (OPENPBR_RENDER_EMITTER_LIGHT | OPENPBR_RENDER_EMITTER_SPHERE) &&
-                                      u_emitter < 0.5f);
+            const bool pick_sphere =
+                candidates == OPENPBR_RENDER_EMITTER_SPHERE ||
+                (candidates == (OPENPBR_RENDER_EMITTER_LIGHT | OPENPBR_RENDER_EMITTER_SPHERE) && u_emitter < 0.5f);
             const vec3 emitter_center = pick_sphere ? sphere_center : light_center;
             const float emitter_radius = pick_sphere ? sphere_radius : light_radius;
-            const OpenPBR_RenderCone cone = openpbr_render_sample_cone(
-                position, emitter_center, emitter_radius,
-                vec2(openpbr_render_random(key, step, OPENPBR_RENDER_DIMENSION_LIGHT_U),
-                     openpbr_render_random(key, step, OPENPBR_RENDER_DIMENSION_LIGHT_V)));
+            const OpenPBR_RenderCone cone =
+                openpbr_render_sample_cone(position, emitter_center, emitter_radius,
+                                           vec2(openpbr_render_random(key, step, OPENPBR_RENDER_DIMENSION_LIGHT_U),
+                                                openpbr_render_random(key, step, OPENPBR_RENDER_DIMENSION_LIGHT_V)));
             if (cone.valid)
             {
                 const OpenPBR_DiffuseSpecular value = openpbr_eval(bsdf, cone.direction);

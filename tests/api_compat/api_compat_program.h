@@ -25,9 +25,8 @@ OPENPBR_FUNC void api_compat_write_vec3(uint index, vec3 value)
 
 // One shading step of a path tracer: prepare at a hit, evaluate a light, sample the BSDF, the
 // staged preparation, the interior medium and the shadow shortcut. base: first result index.
-OPENPBR_FUNC void api_compat_shade(OPENPBR_IN(OpenPBR_ResolvedInputs) inputs, vec3 view_direction,
-                                   vec3 light_to_evaluate, vec3 path_throughput, float exterior_ior, vec3 rand,
-                                   vec2 medium_rand, uint base)
+OPENPBR_FUNC void api_compat_shade(OPENPBR_IN(OpenPBR_ResolvedInputs) inputs, vec3 view_direction, vec3 light_to_evaluate,
+                                   vec3 path_throughput, float exterior_ior, vec3 rand, vec2 medium_rand, uint base)
 {
     const OpenPBR_PreparedBsdf prepared =
         openpbr_prepare(inputs, path_throughput, OpenPBR_BaseRgbWavelengths_nm, exterior_ior, view_direction);
@@ -64,8 +63,8 @@ OPENPBR_FUNC void api_compat_shade(OPENPBR_IN(OpenPBR_ResolvedInputs) inputs, ve
     // The interior medium: a flight to the next event, and the weights of both outcomes.
     const OpenPBR_HomogeneousVolume medium = prepared.volume;
     const float event_distance = openpbr_sample_event_distance(medium, path_throughput, medium_rand);
-    api_compat_write_vec3(base + 34u, openpbr_calculate_weight_for_event_at_distance(medium, path_throughput,
-                                                                                     min(event_distance, 1.0f)));
+    api_compat_write_vec3(
+        base + 34u, openpbr_calculate_weight_for_event_at_distance(medium, path_throughput, min(event_distance, 1.0f)));
     api_compat_write_vec3(base + 37u, openpbr_calculate_weight_for_surface_at_distance(medium, path_throughput, 0.5f));
     api_compat_write_vec3(base + 40u, openpbr_calculate_transmittance_at_distance(medium, 0.5f));
     api_compat_write_vec3(base + 43u, openpbr_calculate_transmittance_at_infinity(medium));
@@ -85,8 +84,8 @@ OPENPBR_FUNC void api_compat_shade(OPENPBR_IN(OpenPBR_ResolvedInputs) inputs, ve
     // Media built by the renderer itself.
     const OpenPBR_HomogeneousVolume fog =
         openpbr_make_homogeneous_volume_from_extinction_and_albedo(vec3(0.5f, 1.0f, 2.0f), vec3(0.9f, 0.8f, 0.7f), 0.3f);
-    const OpenPBR_HomogeneousVolume smoke =
-        openpbr_make_homogeneous_volume_from_absorption_and_scattering(vec3(0.1f, 0.2f, 0.3f), vec3(1.0f, 1.0f, 1.0f), -0.2f);
+    const OpenPBR_HomogeneousVolume smoke = openpbr_make_homogeneous_volume_from_absorption_and_scattering(
+        vec3(0.1f, 0.2f, 0.3f), vec3(1.0f, 1.0f, 1.0f), -0.2f);
     const OpenPBR_HomogeneousVolume ink = openpbr_make_homogeneous_volume_from_extinction(vec3(4.0f, 2.0f, 1.0f));
     api_compat_write_vec3(base + 57u, openpbr_calculate_transmittance_at_distance(fog, 1.0f));
     api_compat_write_vec3(base + 60u, smoke.albedo);

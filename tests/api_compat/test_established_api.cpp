@@ -83,7 +83,8 @@ TEST(EstablishedApi, SelectionFollowsThroughputAndTheEstimatorKeepsItsMean)
     const glm::vec3 cyan_path(0.02f, 1.0f, 1.0f);
     const OpenPBR_PreparedBsdf for_white =
         openpbr_prepare(inputs, white, OpenPBR_BaseRgbWavelengths_nm, OpenPBR_VacuumIor, view);
-    const OpenPBR_PreparedBsdf for_red = openpbr_prepare(inputs, red_path, OpenPBR_BaseRgbWavelengths_nm, OpenPBR_VacuumIor, view);
+    const OpenPBR_PreparedBsdf for_red =
+        openpbr_prepare(inputs, red_path, OpenPBR_BaseRgbWavelengths_nm, OpenPBR_VacuumIor, view);
     const OpenPBR_PreparedBsdf for_cyan =
         openpbr_prepare(inputs, cyan_path, OpenPBR_BaseRgbWavelengths_nm, OpenPBR_VacuumIor, view);
     // The red diffuse lobe adds most to a red path and least to a cyan one; the white coat and
@@ -148,8 +149,8 @@ TEST(EstablishedApi, SelectionFollowsThroughputAndTheEstimatorKeepsItsMean)
                 << means[0].mean()[channel];
         }
         std::printf("albedo estimate, path %d: (%.4f %.4f %.4f) vs white (%.4f %.4f %.4f), std. error %.1e\n", path,
-                    means[path].mean().x, means[path].mean().y, means[path].mean().z, means[0].mean().x,
-                    means[0].mean().y, means[0].mean().z, error.x);
+                    means[path].mean().x, means[path].mean().y, means[path].mean().z, means[0].mean().x, means[0].mean().y,
+                    means[0].mean().z, error.x);
     }
 }
 
@@ -161,8 +162,8 @@ TEST(EstablishedApi, DegenerateThroughputsSelectLikeWhite)
     const float nan = std::nanf("");
     const float infinity = INFINITY;
     // All zero, negative, NaN: no preference; a grey of any scale is white after normalization.
-    for (const glm::vec3 throughput : {glm::vec3(0.0f), glm::vec3(-1.0f), glm::vec3(nan), glm::vec3(0.25f),
-                                       glm::vec3(3.0e38f)})
+    for (const glm::vec3 throughput :
+         {glm::vec3(0.0f), glm::vec3(-1.0f), glm::vec3(nan), glm::vec3(0.25f), glm::vec3(3.0e38f)})
     {
         const OpenPBR_PreparedBsdf prepared =
             openpbr_prepare(inputs, throughput, OpenPBR_BaseRgbWavelengths_nm, OpenPBR_VacuumIor, view);
@@ -196,7 +197,8 @@ TEST(EstablishedApi, StagedPreparationEqualsOneCall)
         const glm::vec3 throughput = random.next3();
         // In air and under water (the coat's and the base's relative IORs change).
         const float exterior_ior = index % 2 == 0 ? OpenPBR_VacuumIor : 1.33f;
-        const OpenPBR_PreparedBsdf one_call = openpbr_prepare(inputs, throughput, OpenPBR_BaseRgbWavelengths_nm, exterior_ior, view);
+        const OpenPBR_PreparedBsdf one_call =
+            openpbr_prepare(inputs, throughput, OpenPBR_BaseRgbWavelengths_nm, exterior_ior, view);
         // Start from another material's preparation: every field the stages own must be
         // overwritten.
         OpenPBR_ResolvedInputs other = openpbr_make_default_resolved_inputs();
@@ -244,12 +246,12 @@ TEST(EstablishedApi, VolumeConstructorsClampAndAgree)
     EXPECT_FLOAT_EQ(a.albedo.x, 0.75f);
     EXPECT_EQ(a.albedo.y, 0.0f);  // no extinction: albedo 0
     EXPECT_FLOAT_EQ(a.albedo.z, 0.5f);
-    const OpenPBR_HomogeneousVolume b =
-        openpbr_make_homogeneous_volume_from_extinction_and_albedo(glm::vec3(2.0f, 0.0f, 4.0f), glm::vec3(0.75f, 0.0f, 0.5f), 0.4f);
+    const OpenPBR_HomogeneousVolume b = openpbr_make_homogeneous_volume_from_extinction_and_albedo(
+        glm::vec3(2.0f, 0.0f, 4.0f), glm::vec3(0.75f, 0.0f, 0.5f), 0.4f);
     EXPECT_FLOAT_EQ(b.extinction.z, a.extinction.z);
     const float nan = std::nanf("");
-    const OpenPBR_HomogeneousVolume clamped =
-        openpbr_make_homogeneous_volume_from_extinction_and_albedo(glm::vec3(-1.0f, nan, 1e30f), glm::vec3(2.0f, -1.0f, nan), 5.0f);
+    const OpenPBR_HomogeneousVolume clamped = openpbr_make_homogeneous_volume_from_extinction_and_albedo(
+        glm::vec3(-1.0f, nan, 1e30f), glm::vec3(2.0f, -1.0f, nan), 5.0f);
     EXPECT_EQ(clamped.extinction.x, 0.0f);
     EXPECT_EQ(clamped.extinction.y, 0.0f);
     EXPECT_EQ(clamped.extinction.z, OPENPBR_VOLUME_EXTINCTION_MAX);
@@ -268,8 +270,8 @@ TEST(EstablishedApi, VolumeConstructorsClampAndAgree)
 // coloured throughput that draws mostly from one channel.
 TEST(EstablishedApi, EventAndSurfaceWeightsAreUnbiased)
 {
-    const OpenPBR_HomogeneousVolume medium =
-        openpbr_make_homogeneous_volume_from_extinction_and_albedo(glm::vec3(0.5f, 2.0f, 8.0f), glm::vec3(0.9f, 0.5f, 0.2f), 0.0f);
+    const OpenPBR_HomogeneousVolume medium = openpbr_make_homogeneous_volume_from_extinction_and_albedo(
+        glm::vec3(0.5f, 2.0f, 8.0f), glm::vec3(0.9f, 0.5f, 0.2f), 0.0f);
     const float segment = 0.7f;
     const glm::vec3 throughput(1.0f, 0.3f, 0.05f);
     Mean3 passed;
@@ -286,12 +288,13 @@ TEST(EstablishedApi, EventAndSurfaceWeightsAreUnbiased)
             scattered.add(weight);
             passed.add(glm::vec3(0.0f));
             // The project's sampler computes the same weight with the drawn channel as reference.
-            const OpenPBR_VolumeDistanceSample flight = openpbr_volume_sample_distance(medium, throughput, segment, u.x, u.y);
+            const OpenPBR_VolumeDistanceSample flight =
+                openpbr_volume_sample_distance(medium, throughput, segment, u.x, u.y);
             for (int channel = 0; channel < 3; ++channel)
             {
-                largest_relative_difference = std::max(
-                    largest_relative_difference, std::abs(flight.weight[channel] - weight[channel]) /
-                                                     std::max(std::abs(flight.weight[channel]), 1e-30f));
+                largest_relative_difference =
+                    std::max(largest_relative_difference, std::abs(flight.weight[channel] - weight[channel]) /
+                                                              std::max(std::abs(flight.weight[channel]), 1e-30f));
             }
         }
         else
@@ -395,8 +398,10 @@ glm::vec3 shortcut_slab_transmittance(const OpenPBR_ResolvedInputs& inputs, glm:
     OpenPBR_ResolvedInputs bottom = inputs;
     bottom.geometry_basis = openpbr_make_basis(glm::vec3(0.0f, 0.0f, -1.0f));
     bottom.geometry_coat_basis = bottom.geometry_basis;
-    const OpenPBR_PreparedBsdf entering = openpbr_prepare(top, glm::vec3(1.0f), OpenPBR_BaseRgbWavelengths_nm, OpenPBR_VacuumIor, -direction);
-    const OpenPBR_PreparedBsdf leaving = openpbr_prepare(bottom, glm::vec3(1.0f), OpenPBR_BaseRgbWavelengths_nm, OpenPBR_VacuumIor, -direction);
+    const OpenPBR_PreparedBsdf entering =
+        openpbr_prepare(top, glm::vec3(1.0f), OpenPBR_BaseRgbWavelengths_nm, OpenPBR_VacuumIor, -direction);
+    const OpenPBR_PreparedBsdf leaving =
+        openpbr_prepare(bottom, glm::vec3(1.0f), OpenPBR_BaseRgbWavelengths_nm, OpenPBR_VacuumIor, -direction);
     vec3 entering_weight;
     float entering_probability = 0.0f;
     vec3 leaving_weight;
@@ -405,7 +410,8 @@ glm::vec3 shortcut_slab_transmittance(const OpenPBR_ResolvedInputs& inputs, glm:
     openpbr_translucent_shadow_weight_and_prob(leaving, leaving_weight, leaving_probability);
     EXPECT_FALSE(entering.inside);
     EXPECT_TRUE(leaving.inside);
-    const glm::vec3 interior = openpbr_calculate_transmittance_at_distance(entering.volume, thickness / std::abs(direction.z));
+    const glm::vec3 interior =
+        openpbr_calculate_transmittance_at_distance(entering.volume, thickness / std::abs(direction.z));
     return entering_weight * entering_probability * interior * leaving_weight * leaving_probability;
 }
 
@@ -413,9 +419,9 @@ struct SlabCase
 {
     const char* name;
     float roughness;
-    float depth;       // transmission_depth; 0: no medium (the tint is applied on entry)
-    float angle_deg;   // of the shadow ray from the normal
-    float tolerance;   // on shortcut / (reference x predicted bias), see the table below
+    float depth;      // transmission_depth; 0: no medium (the tint is applied on entry)
+    float angle_deg;  // of the shadow ray from the normal
+    float tolerance;  // on shortcut / (reference x predicted bias), see the table below
 };
 
 class TranslucentShadow : public ::testing::TestWithParam<SlabCase>
@@ -465,15 +471,14 @@ TEST_P(TranslucentShadow, MatchesPathTracedSlab)
 // form, the reference's Monte Carlo noise at 2e5 paths included); rough cases 0.05 around 1
 // (measured shortcut / path-traced: 1.0003-1.0035 at normal incidence, 1.020 at 45 degrees,
 // where the rough exit sends part of the light back that the shortcut lets through).
-INSTANTIATE_TEST_SUITE_P(
-    Slabs, TranslucentShadow,
-    ::testing::Values(SlabCase{"smooth_clear_normal", 0.0f, 0.0f, 0.0f, 0.01f},
-                      SlabCase{"smooth_absorbing_normal", 0.0f, 1.0f, 0.0f, 0.01f},
-                      SlabCase{"smooth_absorbing_45", 0.0f, 1.0f, 45.0f, 0.01f},
-                      SlabCase{"smooth_absorbing_70", 0.0f, 1.0f, 70.0f, 0.01f},
-                      SlabCase{"rough_absorbing_normal", 0.3f, 1.0f, 0.0f, 0.05f},
-                      SlabCase{"rough_clear_45", 0.3f, 0.0f, 45.0f, 0.05f}),
-    [](const ::testing::TestParamInfo<SlabCase>& info) { return std::string(info.param.name); });
+INSTANTIATE_TEST_SUITE_P(Slabs, TranslucentShadow,
+                         ::testing::Values(SlabCase{"smooth_clear_normal", 0.0f, 0.0f, 0.0f, 0.01f},
+                                           SlabCase{"smooth_absorbing_normal", 0.0f, 1.0f, 0.0f, 0.01f},
+                                           SlabCase{"smooth_absorbing_45", 0.0f, 1.0f, 45.0f, 0.01f},
+                                           SlabCase{"smooth_absorbing_70", 0.0f, 1.0f, 70.0f, 0.01f},
+                                           SlabCase{"rough_absorbing_normal", 0.3f, 1.0f, 0.0f, 0.05f},
+                                           SlabCase{"rough_clear_45", 0.3f, 0.0f, 45.0f, 0.05f}),
+                         [](const ::testing::TestParamInfo<SlabCase>& info) { return std::string(info.param.name); });
 
 TEST(EstablishedApi, ShadowShortcutOfOpaqueAndThinMaterials)
 {

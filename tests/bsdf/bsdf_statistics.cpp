@@ -41,16 +41,14 @@ ChunkPlan plan_chunks(std::uint64_t count)
     return ChunkPlan{count, std::max<std::uint64_t>(1, std::min<std::uint64_t>(256, (count + chunk_size - 1) / chunk_size))};
 }
 
-template <class Function>
-void parallel_for_index(std::uint64_t count, const Function& function)
+template <class Function> void parallel_for_index(std::uint64_t count, const Function& function)
 {
-    tbb::parallel_for(tbb::blocked_range<std::uint64_t>(0, count, 1),
-                      [&](const tbb::blocked_range<std::uint64_t>& range) {
-                          for (std::uint64_t i = range.begin(); i != range.end(); ++i)
-                          {
-                              function(i);
-                          }
-                      });
+    tbb::parallel_for(tbb::blocked_range<std::uint64_t>(0, count, 1), [&](const tbb::blocked_range<std::uint64_t>& range) {
+        for (std::uint64_t i = range.begin(); i != range.end(); ++i)
+        {
+            function(i);
+        }
+    });
 }
 
 // Calls visit(index, u) for the indices of one chunk with independent uniform triples; chunk
@@ -428,7 +426,8 @@ int grid_cell_of(const SamplingTarget& target, const SphereGridOptions& grid, co
     {
         phi += kTwoPi;
     }
-    const int i_theta = std::clamp(static_cast<int>((cos_theta + 1.0) * 0.5 * grid.cos_theta_bins), 0, grid.cos_theta_bins - 1);
+    const int i_theta =
+        std::clamp(static_cast<int>((cos_theta + 1.0) * 0.5 * grid.cos_theta_bins), 0, grid.cos_theta_bins - 1);
     const int i_phi = std::clamp(static_cast<int>(phi / kTwoPi * grid.phi_bins), 0, grid.phi_bins - 1);
     return i_theta * grid.phi_bins + i_phi;
 }
@@ -633,9 +632,8 @@ ChiSquareResult run_chi_square_test(const SamplingTarget& target, const ChiSquar
         }
     }
     // Atoms never sampled cannot report; the binomial test below catches a missing delta lobe.
-    if (!result.atoms.empty() &&
-        !(std::fabs(result.delta_reported_sum - result.delta_probability) <=
-          options.delta_pdf_relative_tolerance * std::max(result.delta_probability, 1e-3)))
+    if (!result.atoms.empty() && !(std::fabs(result.delta_reported_sum - result.delta_probability) <=
+                                   options.delta_pdf_relative_tolerance * std::max(result.delta_probability, 1e-3)))
     {
         result.delta_pdfs_consistent = false;
     }
@@ -664,7 +662,8 @@ ChiSquareResult run_chi_square_test(const SamplingTarget& target, const ChiSquar
     }
     for (const DeltaAtom& atom : result.atoms)
     {
-        cells.push_back({static_cast<double>(atom.count), n * atom.reported_pdf_mean, "delta " + lobe_type_string(atom.lobe_type)});
+        cells.push_back(
+            {static_cast<double>(atom.count), n * atom.reported_pdf_mean, "delta " + lobe_type_string(atom.lobe_type)});
     }
     const double no_sample_probability = std::max(0.0, 1.0 - result.pdf_integral - result.delta_reported_sum);
     cells.push_back({static_cast<double>(tally.invalid + tally.nonfinite), n * no_sample_probability, "no sample"});
@@ -676,12 +675,12 @@ ChiSquareResult run_chi_square_test(const SamplingTarget& target, const ChiSquar
     {
         order[i] = i;
     }
-    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return cells[a].expected < cells[b].expected; });
+    std::stable_sort(order.begin(), order.end(),
+                     [&](std::size_t a, std::size_t b) { return cells[a].expected < cells[b].expected; });
     Cell pool{0.0, 0.0, "pool of small cells"};
     std::size_t first_unpooled = 0;
-    while (first_unpooled < order.size() &&
-           (cells[order[first_unpooled]].expected < options.min_expected_count ||
-            (pool.expected > 0.0 && pool.expected < options.min_expected_count)))
+    while (first_unpooled < order.size() && (cells[order[first_unpooled]].expected < options.min_expected_count ||
+                                             (pool.expected > 0.0 && pool.expected < options.min_expected_count)))
     {
         pool.observed += cells[order[first_unpooled]].observed;
         pool.expected += cells[order[first_unpooled]].expected;
@@ -725,15 +724,15 @@ ChiSquareResult run_chi_square_test(const SamplingTarget& target, const ChiSquar
     }
 
     result.delta_p_value = binomial_two_sided_p_value(result.delta_count, options.sample_count, result.delta_probability);
-    result.continuous_p_value = binomial_two_sided_p_value(result.continuous_count, options.sample_count,
-                                                           std::clamp(result.pdf_integral, 0.0, 1.0));
+    result.continuous_p_value =
+        binomial_two_sided_p_value(result.continuous_count, options.sample_count, std::clamp(result.pdf_integral, 0.0, 1.0));
 
     std::ostringstream report;
     report << std::setprecision(6) << "target '" << target.name << "': " << options.sample_count << " samples, "
            << result.continuous_count << " continuous, " << result.delta_count << " delta, " << result.invalid_count
            << " no sample, " << result.nonfinite_count << " with a bad direction\n"
-           << "  pdf integral " << result.pdf_integral << " vs continuous fraction "
-           << result.continuous_count / n << " (p = " << result.continuous_p_value << ")\n"
+           << "  pdf integral " << result.pdf_integral << " vs continuous fraction " << result.continuous_count / n
+           << " (p = " << result.continuous_p_value << ")\n"
            << "  delta probability " << result.delta_probability << " vs fraction " << result.delta_count / n
            << " (p = " << result.delta_p_value << "), reported sum " << result.delta_reported_sum
            << (result.delta_pdfs_consistent ? "" : " [INCONSISTENT delta pdfs]") << "\n";
@@ -834,8 +833,8 @@ ConsistencyResult check_sample_consistency(const SamplingTarget& target, const C
             if (!(s.pdf > 0.0) || !std::isfinite(s.pdf) || !is_finite(s.weight.diffuse) || !is_finite(s.weight.specular) ||
                 !is_non_negative(s.weight.diffuse) || !is_non_negative(s.weight.specular) || !is_unit_direction(s.direction))
             {
-                fail(r.invalid_value_count, "invalid sample (pdf <= 0, non-finite/negative weight or bad direction)", u, s, 0.0,
-                     nullptr);
+                fail(r.invalid_value_count, "invalid sample (pdf <= 0, non-finite/negative weight or bad direction)", u, s,
+                     0.0, nullptr);
                 return;
             }
             if (s.is_delta())
@@ -843,8 +842,8 @@ ConsistencyResult check_sample_consistency(const SamplingTarget& target, const C
                 return;
             }
             const double pdf = target.pdf(s.direction);
-            const OpenPBR_DiffuseSpecular value = target.eval ? target.eval(s.direction)
-                                                              : OpenPBR_DiffuseSpecular{glm::vec3(0.0f), glm::vec3(0.0f)};
+            const OpenPBR_DiffuseSpecular value =
+                target.eval ? target.eval(s.direction) : OpenPBR_DiffuseSpecular{glm::vec3(0.0f), glm::vec3(0.0f)};
             if (!std::isfinite(pdf) || pdf < 0.0 || !is_finite(value.diffuse) || !is_finite(value.specular) ||
                 !is_non_negative(value.diffuse) || !is_non_negative(value.specular))
             {
@@ -882,7 +881,8 @@ ConsistencyResult check_sample_consistency(const SamplingTarget& target, const C
             {
                 for (int c = 0; c < 3; ++c)
                 {
-                    weight_error = std::max(weight_error, std::fabs(double(got[part][c]) - double(values[part][c]) / pdf) / scale);
+                    weight_error =
+                        std::max(weight_error, std::fabs(double(got[part][c]) - double(values[part][c]) / pdf) / scale);
                 }
             }
             r.max_weight_relative_error = std::max(r.max_weight_relative_error, weight_error);
@@ -1050,11 +1050,11 @@ ReciprocityResult check_reciprocity(const LobeFunction& f, std::uint64_t pair_co
             }
             ++result.checked_count;
             const double difference = std::fabs(forward[c] - backward[c]);
-            const double allowed =
-                options.relative_tolerance * larger + sensitivity[c];
+            const double allowed = options.relative_tolerance * larger + sensitivity[c];
             const double relative_error = difference / larger;
-            result.max_relative_error = std::max(result.max_relative_error,
-                                                 std::isnan(relative_error) ? std::numeric_limits<double>::infinity() : relative_error);
+            result.max_relative_error =
+                std::max(result.max_relative_error,
+                         std::isnan(relative_error) ? std::numeric_limits<double>::infinity() : relative_error);
             const double excess = difference / allowed;
             if (!(difference <= allowed))
             {

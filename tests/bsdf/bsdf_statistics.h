@@ -36,7 +36,7 @@ namespace openpbr::testing {
 // (seed, stream) pair; different streams are independent sequences.
 class Pcg32
 {
-public:
+  public:
     explicit Pcg32(std::uint64_t seed = 0x853c49e6748fea9bull, std::uint64_t stream = 0xda3e39cb94b95bdbull);
     std::uint32_t next_uint();
     // Uniform in [0, 1), 24 random bits (every value exactly representable as a float).
@@ -44,7 +44,7 @@ public:
     // Uniform in [0, 1), 53 random bits.
     double next_double();
 
-private:
+  private:
     std::uint64_t state_;
     std::uint64_t increment_;
 };
@@ -55,11 +55,11 @@ private:
 // estimates (randomized quasi-Monte Carlo).
 class KroneckerSequence
 {
-public:
+  public:
     explicit KroneckerSequence(std::uint64_t seed);
     glm::vec3 at(std::uint64_t index) const;
 
-private:
+  private:
     double shift_[3];
 };
 
@@ -80,9 +80,9 @@ std::uint64_t seed_from_name(const std::string& name);
 
 struct DirectionSample
 {
-    glm::vec3 direction{0.0f};       // world space
+    glm::vec3 direction{0.0f};  // world space
     OpenPBR_DiffuseSpecular weight{glm::vec3(0.0f), glm::vec3(0.0f)};
-    double pdf = 0.0;                 // solid-angle pdf, or the delta lobe's discrete probability
+    double pdf = 0.0;  // solid-angle pdf, or the delta lobe's discrete probability
     std::uint32_t lobe_type = OPENPBR_LOBE_TYPE_NONE;
 
     bool is_valid() const { return lobe_type != OPENPBR_LOBE_TYPE_NONE; }
@@ -138,9 +138,9 @@ void gauss_legendre(int order, std::vector<double>& nodes, std::vector<double>& 
 
 struct SphereGridOptions
 {
-    int cos_theta_bins = 32;  // over cos theta in [-1, 1]; even, so a bin edge is on the horizon
-    int phi_bins = 64;        // over phi in [0, 2 pi)
-    int quadrature_order = 8; // Gauss-Legendre nodes per axis per (sub)cell
+    int cos_theta_bins = 32;   // over cos theta in [-1, 1]; even, so a bin edge is on the horizon
+    int phi_bins = 64;         // over phi in [0, 2 pi)
+    int quadrature_order = 8;  // Gauss-Legendre nodes per axis per (sub)cell
     // Adaptive refinement: a cell is split in 2 x 2 until the split changes its integral by
     // less than max(relative_tolerance * value, absolute_tolerance) or the depth is reached.
     int max_depth = 5;
@@ -181,24 +181,24 @@ struct ChiSquareResult
     std::uint64_t sample_count = 0;
     std::uint64_t continuous_count = 0;  // valid non-delta samples
     std::uint64_t delta_count = 0;
-    std::uint64_t invalid_count = 0;     // no sample (lobe_type NONE)
-    std::uint64_t nonfinite_count = 0;   // samples with non-finite or non-unit directions
-    double pdf_integral = 0.0;           // quadrature of pdf() over the sphere
-    double delta_probability = 0.0;      // target.delta_probability
-    double delta_reported_sum = 0.0;     // sum over the atoms of their reported pdf
-    bool delta_pdfs_consistent = true;   // every atom reports one pdf, and the sum matches
+    std::uint64_t invalid_count = 0;    // no sample (lobe_type NONE)
+    std::uint64_t nonfinite_count = 0;  // samples with non-finite or non-unit directions
+    double pdf_integral = 0.0;          // quadrature of pdf() over the sphere
+    double delta_probability = 0.0;     // target.delta_probability
+    double delta_reported_sum = 0.0;    // sum over the atoms of their reported pdf
+    bool delta_pdfs_consistent = true;  // every atom reports one pdf, and the sum matches
     std::vector<DeltaAtom> atoms;
 
     double statistic = 0.0;
     int degrees_of_freedom = 0;
-    int pooled_cell_count = 0;           // cells merged into the pool
-    double p_value = 1.0;                // chi-square
-    double delta_p_value = 1.0;          // binomial: delta fraction vs target.delta_probability
-    double continuous_p_value = 1.0;     // binomial: continuous fraction vs pdf_integral
+    int pooled_cell_count = 0;        // cells merged into the pool
+    double p_value = 1.0;             // chi-square
+    double delta_p_value = 1.0;       // binomial: delta fraction vs target.delta_probability
+    double continuous_p_value = 1.0;  // binomial: continuous fraction vs pdf_integral
 
-    std::vector<double> observed;        // per grid cell
-    std::vector<double> expected;        // per grid cell (counts)
-    std::string report;                  // human-readable summary incl. the worst cells
+    std::vector<double> observed;  // per grid cell
+    std::vector<double> expected;  // per grid cell (counts)
+    std::string report;            // human-readable summary incl. the worst cells
 };
 
 ChiSquareResult run_chi_square_test(const SamplingTarget& target, const ChiSquareOptions& options);
@@ -209,9 +209,9 @@ ChiSquareResult run_chi_square_test(const SamplingTarget& target, const ChiSquar
 struct PdfIntegralResult
 {
     double pdf_integral = 0.0;
-    double valid_fraction = 0.0;   // valid non-delta samples / all samples
-    double standard_error = 0.0;   // binomial standard error of valid_fraction
-    double p_value = 1.0;          // binomial test of the count against pdf_integral
+    double valid_fraction = 0.0;  // valid non-delta samples / all samples
+    double standard_error = 0.0;  // binomial standard error of valid_fraction
+    double p_value = 1.0;         // binomial test of the count against pdf_integral
     std::uint64_t sample_count = 0;
 };
 
@@ -236,14 +236,14 @@ struct ConsistencyOptions
 struct ConsistencyResult
 {
     std::uint64_t sample_count = 0;
-    std::uint64_t checked_count = 0;       // non-delta samples with pdf/eval above the floors
+    std::uint64_t checked_count = 0;  // non-delta samples with pdf/eval above the floors
     std::uint64_t weight_mismatch_count = 0;
     std::uint64_t pdf_mismatch_count = 0;
-    std::uint64_t invalid_value_count = 0; // non-finite or negative weight/pdf, bad direction,
-                                           // pdf == 0 with a lobe type or pdf > 0 without one
+    std::uint64_t invalid_value_count = 0;  // non-finite or negative weight/pdf, bad direction,
+                                            // pdf == 0 with a lobe type or pdf > 0 without one
     double max_weight_relative_error = 0.0;
     double max_pdf_relative_error = 0.0;
-    std::string first_failure;             // description of the first failing sample
+    std::string first_failure;  // description of the first failing sample
     bool ok() const { return weight_mismatch_count == 0 && pdf_mismatch_count == 0 && invalid_value_count == 0; }
 };
 
@@ -303,11 +303,11 @@ struct ReciprocityOptions
 struct ReciprocityResult
 {
     std::uint64_t pair_count = 0;
-    std::uint64_t checked_count = 0;   // channel values where either order exceeds min_value
-    std::uint64_t failure_count = 0;   // differences above relative_tolerance + conditioning
-    double max_relative_error = 0.0;   // raw, for information
-    double max_excess = 0.0;           // largest difference / allowed difference (<= 1 passes)
-    std::string worst;                 // the pair with the largest excess
+    std::uint64_t checked_count = 0;  // channel values where either order exceeds min_value
+    std::uint64_t failure_count = 0;  // differences above relative_tolerance + conditioning
+    double max_relative_error = 0.0;  // raw, for information
+    double max_excess = 0.0;          // largest difference / allowed difference (<= 1 passes)
+    std::string worst;                // the pair with the largest excess
 };
 
 // Random pairs: the view uniform over the upper hemisphere, the light over the upper

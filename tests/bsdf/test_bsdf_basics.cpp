@@ -24,7 +24,7 @@ constexpr float kPiF = 3.14159265358979f;
 
 class RandomMaterials
 {
-public:
+  public:
     explicit RandomMaterials(std::uint64_t seed) : rng_(seed, 17) {}
 
     float uniform(float low, float high) { return low + (high - low) * rng_.next_float(); }
@@ -135,7 +135,7 @@ public:
 
     Pcg32& rng() { return rng_; }
 
-private:
+  private:
     Pcg32 rng_;
 };
 
@@ -162,8 +162,7 @@ std::string check_prepared(const OpenPBR_PreparedBsdf& bsdf, RandomMaterials& ra
         const glm::vec3 light = random.sphere_direction();
         const OpenPBR_DiffuseSpecular value = openpbr_eval(bsdf, light);
         const float pdf = openpbr_pdf(bsdf, light);
-        if (!finite_non_negative(value.diffuse) || !finite_non_negative(value.specular) || !std::isfinite(pdf) ||
-            pdf < 0.0f)
+        if (!finite_non_negative(value.diffuse) || !finite_non_negative(value.specular) || !std::isfinite(pdf) || pdf < 0.0f)
         {
             problem << "light " << to_string(light) << ": eval diffuse " << to_string(value.diffuse) << " specular "
                     << to_string(value.specular) << ", pdf " << pdf;
@@ -180,8 +179,8 @@ std::string check_prepared(const OpenPBR_PreparedBsdf& bsdf, RandomMaterials& ra
     }
     if (!result.ok())
     {
-        problem << result.weight_mismatch_count << " weight mismatches, " << result.pdf_mismatch_count
-                << " pdf mismatches, " << result.invalid_value_count << " invalid samples (max relative errors: weight "
+        problem << result.weight_mismatch_count << " weight mismatches, " << result.pdf_mismatch_count << " pdf mismatches, "
+                << result.invalid_value_count << " invalid samples (max relative errors: weight "
                 << result.max_weight_relative_error << ", pdf " << result.max_pdf_relative_error
                 << "); first: " << result.first_failure;
     }
@@ -335,10 +334,9 @@ void expect_same_basis(const OpenPBR_Basis& a, const OpenPBR_Basis& b, const std
 std::vector<glm::vec3> test_normals()
 {
     std::vector<glm::vec3> normals = {
-        {0.0f, 0.0f, 1.0f},        {0.0f, 0.0f, -1.0f},        {1.0f, 0.0f, 0.0f},          {0.0f, -1.0f, 0.0f},
-        {1e-4f, 2e-4f, -1.0f},     {0.0f, 1e-7f, -1.0f},       {-1e-8f, 1e-8f, -1.0f},      {3e-4f, 0.0f, -1.0f},
-        {0.6f, 0.8f, -1e-8f},      {0.6f, 0.8f, 1e-8f},        {0.6f, 0.8f, -0.0f},         {1e3f, -2e3f, 5e2f},
-        {1e-3f, 2e-3f, -3e-3f},    {0.3f, -0.2f, -0.93f}};
+        {0.0f, 0.0f, 1.0f},   {0.0f, 0.0f, -1.0f},    {1.0f, 0.0f, 0.0f},     {0.0f, -1.0f, 0.0f},  {1e-4f, 2e-4f, -1.0f},
+        {0.0f, 1e-7f, -1.0f}, {-1e-8f, 1e-8f, -1.0f}, {3e-4f, 0.0f, -1.0f},   {0.6f, 0.8f, -1e-8f}, {0.6f, 0.8f, 1e-8f},
+        {0.6f, 0.8f, -0.0f},  {1e3f, -2e3f, 5e2f},    {1e-3f, 2e-3f, -3e-3f}, {0.3f, -0.2f, -0.93f}};
     RandomMaterials random(3);
     for (int i = 0; i < 2000; ++i)
     {
@@ -358,7 +356,8 @@ TEST(BsdfBasis, FromNormalIsOrthonormalAndRightHanded)
     }
     // Zero and non-finite normals fall back to +z.
     const float nan = std::numeric_limits<float>::quiet_NaN();
-    for (const glm::vec3& n : {glm::vec3(0.0f), glm::vec3(nan, 0.0f, 1.0f), glm::vec3(std::numeric_limits<float>::infinity(), 0.0f, 0.0f)})
+    for (const glm::vec3& n :
+         {glm::vec3(0.0f), glm::vec3(nan, 0.0f, 1.0f), glm::vec3(std::numeric_limits<float>::infinity(), 0.0f, 0.0f)})
     {
         const OpenPBR_Basis b = openpbr_make_basis(n);
         expect_orthonormal(b, 1.0f, "degenerate normal " + to_string(n));
@@ -381,7 +380,8 @@ TEST(BsdfBasis, FromNormalAndTangentKeepsTheTangentAndHandedness)
         for (float handedness : {1.0f, -1.0f})
         {
             const OpenPBR_Basis b = openpbr_make_basis(n, t, handedness);
-            const std::string what = "n " + to_string(n) + ", t " + to_string(t) + ", handedness " + std::to_string(handedness);
+            const std::string what =
+                "n " + to_string(n) + ", t " + to_string(t) + ", handedness " + std::to_string(handedness);
             expect_orthonormal(b, handedness, what);
             EXPECT_GT(glm::dot(glm::dvec3(b.tangent), glm::normalize(t_projected)), 1.0 - 1e-5) << what;
             // The (n, t, b) overload takes only the side of the bitangent.
@@ -400,15 +400,16 @@ TEST(BsdfBasis, DegenerateTangentsFallBackToTheNormalOnlyFrame)
     for (const glm::vec3& n : test_normals())
     {
         const glm::vec3 unit_n = glm::vec3(glm::normalize(glm::dvec3(n)));
-        const glm::vec3 degenerate[] = {glm::vec3(0.0f), unit_n, -3.0f * unit_n, 1e-20f * unit_n, glm::vec3(nan, 0.0f, 0.0f),
-                                        glm::vec3(nan), glm::vec3(inf, 1.0f, 0.0f)};
+        const glm::vec3 degenerate[] = {
+            glm::vec3(0.0f),           unit_n, -3.0f * unit_n, 1e-20f * unit_n, glm::vec3(nan, 0.0f, 0.0f), glm::vec3(nan),
+            glm::vec3(inf, 1.0f, 0.0f)};
         const OpenPBR_Basis fallback = openpbr_make_basis(n);
         for (const glm::vec3& t : degenerate)
         {
             for (float handedness : {1.0f, -1.0f})
             {
-                const std::string what = "n " + to_string(n) + ", degenerate t " + to_string(t) + ", handedness " +
-                                         std::to_string(handedness);
+                const std::string what =
+                    "n " + to_string(n) + ", degenerate t " + to_string(t) + ", handedness " + std::to_string(handedness);
                 const OpenPBR_Basis b = openpbr_make_basis(n, t, handedness);
                 // Documented behaviour: the normal-only frame (right-handed) is returned,
                 // whatever the requested handedness.
@@ -445,7 +446,8 @@ TEST(BsdfBasis, PreparedBasisIsOrthonormalForDegenerateGeometry)
         {
             const glm::vec3 view = random.sphere_direction();
             const OpenPBR_PreparedBsdf bsdf = openpbr_prepare(inputs, view);
-            const std::string what = "geometry n " + to_string(g.normal) + ", t " + to_string(g.tangent) + ", view " + to_string(view);
+            const std::string what =
+                "geometry n " + to_string(g.normal) + ", t " + to_string(g.tangent) + ", view " + to_string(view);
             const float det = glm::dot(glm::cross(bsdf.basis.tangent, bsdf.basis.bitangent), bsdf.basis.normal);
             expect_orthonormal(bsdf.basis, det < 0.0f ? -1.0f : 1.0f, what);
             EXPECT_GE(glm::dot(bsdf.basis.normal, view), -1e-6f) << what << ": the prepared frame faces the view";

@@ -308,8 +308,7 @@ constexpr int kHypothesesPerCase = 4;
 
 double significance_level()
 {
-    static const double level =
-        sidak_significance(0.01, static_cast<int>(statistics_cases().size()) * kHypothesesPerCase);
+    static const double level = sidak_significance(0.01, static_cast<int>(statistics_cases().size()) * kHypothesesPerCase);
     return level;
 }
 
@@ -319,7 +318,7 @@ constexpr std::uint64_t kPdfIntegralSamples = 400000;
 
 class BsdfStatistics : public ::testing::TestWithParam<StatisticsCase>
 {
-protected:
+  protected:
     OpenPBR_PreparedBsdf prepare() const
     {
         return openpbr_prepare(GetParam().inputs(), GetParam().view_world(), OPENPBR_DEFAULT_RGB_WAVELENGTHS_NM,
@@ -357,8 +356,8 @@ TEST_P(BsdfStatistics, PdfIntegralMatchesValidFraction)
     SCOPED_TRACE(context());
     EXPECT_LE(result.pdf_integral, 1.0 + 1e-4);
     EXPECT_GT(result.p_value, significance_level())
-        << "integral of pdf " << result.pdf_integral << " vs fraction of valid non-delta samples "
-        << result.valid_fraction << " +- " << result.standard_error;
+        << "integral of pdf " << result.pdf_integral << " vs fraction of valid non-delta samples " << result.valid_fraction
+        << " +- " << result.standard_error;
 }
 
 TEST_P(BsdfStatistics, SampleWeightIsEvalOverPdf)
@@ -463,16 +462,14 @@ TEST_P(WhiteFurnace, Albedo)
         // weight (1 - E_R) / E_T0 (up to 1000, OPENPBR_MIN_TRANSMISSION_ALBEDO): measured
         // standard errors up to 0.009 at 65536 samples (relative IOR 0.67, roughness 0.5, view
         // cos 0.1), 1.2e-3 at 4M, so those sweep rows get 3e-3.
-        const double max_standard_error =
-            c.view_cos >= host::furnace_tolerance_min_cos ? (sweep ? 3e-3 : 1e-3) : 5e-3;
-        EXPECT_LT(se, max_standard_error) << "channel " << channel << ": albedo " << a << " from "
-                                          << albedo.sample_count << " samples";
+        const double max_standard_error = c.view_cos >= host::furnace_tolerance_min_cos ? (sweep ? 3e-3 : 1e-3) : 5e-3;
+        EXPECT_LT(se, max_standard_error) << "channel " << channel << ": albedo " << a << " from " << albedo.sample_count
+                                          << " samples";
         const host::FurnaceBand band = host::furnace_band(*c.config, c.side, c.view_cos);
-        EXPECT_LE(a - 3.0 * se, band.max_albedo)
-            << "energy gain, channel " << channel << ": albedo " << a << " +- " << se
-            << (band.known_limit ? " (known limit)" : "");
-        EXPECT_GE(a + 3.0 * se, band.min_albedo) << "white furnace, channel " << channel << ": albedo " << a << " +- "
-                                                 << se << (band.known_limit ? " (known limit)" : "");
+        EXPECT_LE(a - 3.0 * se, band.max_albedo) << "energy gain, channel " << channel << ": albedo " << a << " +- " << se
+                                                 << (band.known_limit ? " (known limit)" : "");
+        EXPECT_GE(a + 3.0 * se, band.min_albedo) << "white furnace, channel " << channel << ": albedo " << a << " +- " << se
+                                                 << (band.known_limit ? " (known limit)" : "");
         if (c.config->expectation == host::FurnaceExpectation::energy_conserving &&
             c.view_cos >= host::furnace_tolerance_min_cos)
         {
@@ -544,13 +541,15 @@ const std::vector<ReciprocityCase>& reciprocity_cases()
         {"lambert", eon_lobe(glm::vec3(0.8f), 0.0f)},
         {"eon_sigma0p5", eon_lobe(glm::vec3(0.9f, 0.5f, 0.1f), 0.5f)},
         {"eon_sigma1", eon_lobe(glm::vec3(1.0f), 1.0f)},
-        {"ggx_dielectric_r0p5", microfacet_lobe(openpbr_ggx_alpha(0.5f, 0.0f), openpbr_make_dielectric_fresnel(1.5f, glm::vec3(1.0f)))},
+        {"ggx_dielectric_r0p5",
+         microfacet_lobe(openpbr_ggx_alpha(0.5f, 0.0f), openpbr_make_dielectric_fresnel(1.5f, glm::vec3(1.0f)))},
         {"ggx_dielectric_inverse_eta",
          microfacet_lobe(openpbr_ggx_alpha(0.3f, 0.0f), openpbr_make_dielectric_fresnel(1.0f / 1.5f, glm::vec3(1.0f)))},
-        {"ggx_dielectric_r1", microfacet_lobe(openpbr_ggx_alpha(1.0f, 0.0f), openpbr_make_dielectric_fresnel(1.5f, glm::vec3(1.0f)))},
-        {"ggx_f82_metal",
-         microfacet_lobe(openpbr_ggx_alpha(0.4f, 0.0f),
-                         openpbr_make_f82_fresnel(glm::vec3(0.9f, 0.6f, 0.3f), glm::vec3(0.8f, 0.9f, 1.0f), glm::vec3(1.0f)))},
+        {"ggx_dielectric_r1",
+         microfacet_lobe(openpbr_ggx_alpha(1.0f, 0.0f), openpbr_make_dielectric_fresnel(1.5f, glm::vec3(1.0f)))},
+        {"ggx_f82_metal", microfacet_lobe(openpbr_ggx_alpha(0.4f, 0.0f),
+                                          openpbr_make_f82_fresnel(glm::vec3(0.9f, 0.6f, 0.3f), glm::vec3(0.8f, 0.9f, 1.0f),
+                                                                   glm::vec3(1.0f)))},
         {"ggx_anisotropic",
          microfacet_lobe(openpbr_ggx_alpha(0.6f, 0.8f), openpbr_make_dielectric_fresnel(1.5f, glm::vec3(1.0f)))},
         // The view-from-below evaluation computes the Fresnel factor from the inside cosine,
@@ -580,10 +579,10 @@ TEST_P(LobeReciprocity, SwappingViewAndLightKeepsTheBsdf)
     options.min_value = GetParam().min_value;
     const ReciprocityResult result = check_reciprocity(GetParam().f, 100000, 99, options);
     EXPECT_GT(result.checked_count, 30000u);
-    EXPECT_EQ(result.failure_count, 0u) << GetParam().name << ": " << result.failure_count << " of "
-                                         << result.checked_count << " values differ by more than 1e-4 (relative) plus "
-                                         << "rounding; largest raw relative error " << result.max_relative_error
-                                         << "; worst pair " << result.worst;
+    EXPECT_EQ(result.failure_count, 0u) << GetParam().name << ": " << result.failure_count << " of " << result.checked_count
+                                        << " values differ by more than 1e-4 (relative) plus "
+                                        << "rounding; largest raw relative error " << result.max_relative_error
+                                        << "; worst pair " << result.worst;
 }
 
 INSTANTIATE_TEST_SUITE_P(Lobes, LobeReciprocity, ::testing::ValuesIn(reciprocity_cases()),
@@ -681,8 +680,8 @@ TEST(StatisticsMachinery, ChiSquareDetectsASlightlyWrongRoughness)
     const OpenPBR_Fresnel fresnel = openpbr_make_dielectric_fresnel(1.5f, glm::vec3(1.0f));
     const OpenPBR_MicrofacetReflectionLobe sampled = openpbr_microfacet_reflection_lobe_init(
         glm::vec3(1.0f), glm::vec2(0.25f), fresnel, OPENPBR_LOBE_ID_SPECULAR_REFLECTION, 1.0f, view);
-    const OpenPBR_MicrofacetReflectionLobe reported = openpbr_microfacet_reflection_lobe_init(glm::vec3(1.0f), glm::vec2(0.27f), fresnel,
-                                                       OPENPBR_LOBE_ID_SPECULAR_REFLECTION, 1.0f, view);
+    const OpenPBR_MicrofacetReflectionLobe reported = openpbr_microfacet_reflection_lobe_init(
+        glm::vec3(1.0f), glm::vec2(0.27f), fresnel, OPENPBR_LOBE_ID_SPECULAR_REFLECTION, 1.0f, view);
     SamplingTarget target;
     target.name = "ggx 0.25 sampled, 0.27 pdf";
     target.frame = openpbr_make_basis(glm::vec3(0.0f, 0.0f, 1.0f));
@@ -691,10 +690,13 @@ TEST(StatisticsMachinery, ChiSquareDetectsASlightlyWrongRoughness)
         DirectionSample s;
         s.direction = ls.direction;
         s.lobe_type = ls.lobe_type;
-        s.pdf = ls.lobe_type != OPENPBR_LOBE_TYPE_NONE ? openpbr_microfacet_reflection_lobe_pdf(reported, view, ls.direction) : 0.0;
+        s.pdf = ls.lobe_type != OPENPBR_LOBE_TYPE_NONE ? openpbr_microfacet_reflection_lobe_pdf(reported, view, ls.direction)
+                                                       : 0.0;
         return s;
     };
-    target.pdf = [reported, view](const glm::vec3& d) { return double(openpbr_microfacet_reflection_lobe_pdf(reported, view, d)); };
+    target.pdf = [reported, view](const glm::vec3& d) {
+        return double(openpbr_microfacet_reflection_lobe_pdf(reported, view, d));
+    };
     ChiSquareOptions options;
     options.sample_count = 200000;
     const ChiSquareResult result = run_chi_square_test(target, options);

@@ -54,8 +54,7 @@ struct Shading
     OpenPBR_BsdfSample bsdf_sample;
 };
 
-Shading shade(const OpenPBR_ResolvedInputs& material, const glm::vec3& view, const glm::vec3& light,
-              const glm::vec3& u)
+Shading shade(const OpenPBR_ResolvedInputs& material, const glm::vec3& view, const glm::vec3& light, const glm::vec3& u)
 {
     const OpenPBR_PreparedBsdf bsdf = openpbr_prepare(material, view);
     return {openpbr_eval(bsdf, light), openpbr_pdf(bsdf, light), openpbr_sample(bsdf, u)};
@@ -106,8 +105,7 @@ TEST(CoatFrame, PinnedCoatFrameIsDetected)
     int compared = 0;
     for (int material_index = 0; material_index < 50; ++material_index)
     {
-        const OpenPBR_Basis frame =
-            openpbr_make_basis(random_direction(rng), random_direction(rng), 1.0f);
+        const OpenPBR_Basis frame = openpbr_make_basis(random_direction(rng), random_direction(rng), 1.0f);
         OpenPBR_ResolvedInputs base_only = random_coated_material(rng, frame);
         base_only.coat_weight = 1.0f;
         base_only.coat_roughness = 0.3f;

@@ -21,11 +21,11 @@
 
 namespace {
 
+using openpbr::openpbr_fuzz_ltc_data;  // OPENPBR_FUZZ_LTC_FETCH names it unqualified
 using openpbr::OpenPBR_FuzzLobe;
 using openpbr::OpenPBR_LobeSample;
 using openpbr::vec2;
 using openpbr::vec3;
-using openpbr::openpbr_fuzz_ltc_data;  // OPENPBR_FUZZ_LTC_FETCH names it unqualified
 
 constexpr double pi = 3.14159265358979323846;
 
@@ -38,9 +38,8 @@ struct Configuration
 
 // Extremes, the grazing table row and column, interior points off the nodes, a rotated view.
 const Configuration configurations[] = {
-    {0.0f, 0.0f, 0.0f},   {0.0f, 1.0f, 0.5f},  {0.02f, 0.0f, 0.03f}, {0.15f, 2.2f, 0.1f},
-    {0.4f, -0.7f, 0.33f}, {0.7f, 4.0f, 0.61f}, {1.0f, 0.0f, 1.0f},   {0.93f, 0.3f, 0.2f},
-    {0.5f, 0.0f, 0.0f},   {0.25f, 3.0f, 0.9f},
+    {0.0f, 0.0f, 0.0f},  {0.0f, 1.0f, 0.5f}, {0.02f, 0.0f, 0.03f}, {0.15f, 2.2f, 0.1f}, {0.4f, -0.7f, 0.33f},
+    {0.7f, 4.0f, 0.61f}, {1.0f, 0.0f, 1.0f}, {0.93f, 0.3f, 0.2f},  {0.5f, 0.0f, 0.0f},  {0.25f, 3.0f, 0.9f},
 };
 constexpr int configuration_count = int(std::size(configurations));
 
@@ -57,7 +56,7 @@ OpenPBR_FuzzLobe lobe_of(const Configuration& c, vec3 weight = vec3(1.0f), vec3 
 
 class UniformFloats
 {
-public:
+  public:
     explicit UniformFloats(std::uint64_t seed) : engine_(seed) {}
     float next() { return float(engine_() >> 40) * 0x1.0p-24f; }  // [0, 1), 24 bits
     vec2 next2()
@@ -66,7 +65,7 @@ public:
         return vec2(x, next());
     }
 
-private:
+  private:
     std::mt19937_64 engine_;
 };
 
@@ -213,8 +212,8 @@ TEST(FuzzLobe, SampleWeightIsConstant)
             {
                 continue;
             }
-            EXPECT_EQ(sample.lobe_type, openpbr::openpbr_lobe_type(OPENPBR_LOBE_ID_FUZZ, OPENPBR_LOBE_TYPE_REFLECTION |
-                                                                                                OPENPBR_LOBE_TYPE_GLOSSY));
+            EXPECT_EQ(sample.lobe_type, openpbr::openpbr_lobe_type(OPENPBR_LOBE_ID_FUZZ,
+                                                                   OPENPBR_LOBE_TYPE_REFLECTION | OPENPBR_LOBE_TYPE_GLOSSY));
             const float pdf = openpbr::openpbr_fuzz_lobe_pdf(lobe, view, sample.direction);
             const vec3 value = openpbr::openpbr_fuzz_lobe_eval(lobe, view, sample.direction);
             if (!(pdf > 0.0f))
@@ -267,13 +266,13 @@ TEST(FuzzLobe, FiniteAtExtremes)
     const float inf = INFINITY;
     const float roughness_values[] = {0.0f, 1e-8f, 0.5f, 1.0f, -1.0f, 2.0f, nan, inf, -inf};
     const vec3 directions[] = {
-        vec3(0.0f, 0.0f, 1.0f),   vec3(1.0f, 0.0f, 0.0f),           vec3(0.0f, -1.0f, 0.0f),
-        vec3(0.6f, 0.8f, 1e-7f),  vec3(-1.0f, 0.0f, 1e-30f),        vec3(0.0f, 0.0f, -1.0f),
-        vec3(0.6f, 0.0f, -0.8f),  vec3(1e-20f, 0.0f, 1.0f),         vec3(0.70710677f, 0.0f, 0.70710677f),
+        vec3(0.0f, 0.0f, 1.0f),      vec3(1.0f, 0.0f, 0.0f),    vec3(0.0f, -1.0f, 0.0f),
+        vec3(0.6f, 0.8f, 1e-7f),     vec3(-1.0f, 0.0f, 1e-30f), vec3(0.0f, 0.0f, -1.0f),
+        vec3(0.6f, 0.0f, -0.8f),     vec3(1e-20f, 0.0f, 1.0f),  vec3(0.70710677f, 0.0f, 0.70710677f),
         vec3(-0.9998f, 0.0f, 0.02f), vec3(0.0f, 0.0f, 0.0f),
     };
-    const vec2 uniforms[] = {vec2(0.0f, 0.0f), vec2(0.99999994f, 0.99999994f), vec2(0.5f, 0.25f),
-                             vec2(1e-7f, 0.5f), vec2(0.99999994f, 0.0f)};
+    const vec2 uniforms[] = {vec2(0.0f, 0.0f), vec2(0.99999994f, 0.99999994f), vec2(0.5f, 0.25f), vec2(1e-7f, 0.5f),
+                             vec2(0.99999994f, 0.0f)};
     for (const float roughness : roughness_values)
     {
         for (const vec3 view : directions)

@@ -196,8 +196,11 @@ TEST(InputContract, InRangeInputsAreNotReported)
 
 TEST(InputContract, BasesAreOrthonormalized)
 {
-    const glm::vec3 bad_vectors[] = {glm::vec3(0.0f), glm::vec3(kNaN), glm::vec3(kInf, 0.0f, 1.0f),
-                                     glm::vec3(0.0f, 0.0f, 1e30f), glm::vec3(0.0f, 0.0f, 1e-30f),
+    const glm::vec3 bad_vectors[] = {glm::vec3(0.0f),
+                                     glm::vec3(kNaN),
+                                     glm::vec3(kInf, 0.0f, 1.0f),
+                                     glm::vec3(0.0f, 0.0f, 1e30f),
+                                     glm::vec3(0.0f, 0.0f, 1e-30f),
                                      glm::vec3(1e-40f, 0.0f, 1e-40f)};
     for (const glm::vec3& normal : bad_vectors)
     {

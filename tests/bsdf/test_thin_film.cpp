@@ -48,8 +48,8 @@ using Matrix3 = std::array<std::array<double, 3>, 3>;
 
 Matrix3 inverse(const Matrix3& m)
 {
-    const double det = m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
-                       m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
+    const double det = m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) -
+                       m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
     Matrix3 r{};
     r[0][0] = (m[1][1] * m[2][2] - m[1][2] * m[2][1]) / det;
     r[0][1] = (m[0][2] * m[2][1] - m[0][1] * m[2][2]) / det;
@@ -224,10 +224,7 @@ bool finite_unit_interval(const glm::vec3& v)
 }
 
 // Cosine at which the wave in a medium of index n turns evanescent (n_o sin = n), or -1.
-double critical_cosine(double n_o, double n)
-{
-    return n < n_o ? std::sqrt(1.0 - (n / n_o) * (n / n_o)) : -1.0;
-}
+double critical_cosine(double n_o, double n) { return n < n_o ? std::sqrt(1.0 - (n / n_o) * (n / n_o)) : -1.0; }
 
 const std::vector<double> ior_values = {1.0 / 3.0, 0.5, 0.75, 1.0, 1.2, 1.33, 1.5, 2.0, 2.5, 3.0};
 
@@ -264,9 +261,8 @@ TEST(ThinFilm, ZeroThicknessIsTheBaseFresnelDielectric)
                         // grazing incidence when eta is close to 1, so it is compared from 0.01.
                         if (cos_theta >= 0.01f)
                         {
-                            max_vs_library =
-                                std::max({max_vs_library, static_cast<double>(std::abs(full[c] - library)),
-                                          static_cast<double>(std::abs(fast[c] - library))});
+                            max_vs_library = std::max({max_vs_library, static_cast<double>(std::abs(full[c] - library)),
+                                                       static_cast<double>(std::abs(fast[c] - library))});
                         }
                     }
                 }
@@ -327,8 +323,8 @@ TEST(ThinFilm, FiniteAndWithinUnitIntervalEverywhere)
     {
         cosines.push_back(static_cast<float>(i) / 40.0f);
     }
-    std::vector<float> thicknesses = {0.0f, denormal, 1e-30f, 1e-7f, 1e-3f, 0.01f, 1.5f, 2.0f, 5.0f, 10.0f,
-                                      100.0f, 1000.0f, 1999.9f, 2000.0f};
+    std::vector<float> thicknesses = {0.0f, denormal, 1e-30f, 1e-7f,  1e-3f,   0.01f,   1.5f,
+                                      2.0f, 5.0f,     10.0f,  100.0f, 1000.0f, 1999.9f, 2000.0f};
     for (int i = 1; i <= 20; ++i)
     {
         thicknesses.push_back(0.05f * static_cast<float>(i));
@@ -350,7 +346,8 @@ TEST(ThinFilm, FiniteAndWithinUnitIntervalEverywhere)
                     for (float n_b : iors)
                     {
                         const glm::vec3 full = openpbr::openpbr_thin_film_fresnel_dielectric(cos_theta, n_o, n_f, n_b, d);
-                        const glm::vec3 fast = openpbr::openpbr_thin_film_fresnel_dielectric_fast(cos_theta, n_o, n_f, n_b, d);
+                        const glm::vec3 fast =
+                            openpbr::openpbr_thin_film_fresnel_dielectric_fast(cos_theta, n_o, n_f, n_b, d);
                         ASSERT_TRUE(finite_unit_interval(full))
                             << "full cos " << cos_theta << " d " << d << " " << n_o << "/" << n_f << "/" << n_b;
                         ASSERT_TRUE(finite_unit_interval(fast))
@@ -367,12 +364,10 @@ TEST(ThinFilm, FiniteAndWithinUnitIntervalEverywhere)
                                 openpbr::openpbr_thin_film_fresnel_conductor(cos_theta, n_o, n_f, base_n, base_k, d);
                             const glm::vec3 fast =
                                 openpbr::openpbr_thin_film_fresnel_conductor_fast(cos_theta, n_o, n_f, base_n, base_k, d);
-                            ASSERT_TRUE(finite_unit_interval(full))
-                                << "conductor cos " << cos_theta << " d " << d << " " << n_o << "/" << n_f << " n " << n
-                                << " k " << k;
-                            ASSERT_TRUE(finite_unit_interval(fast))
-                                << "conductor fast cos " << cos_theta << " d " << d << " " << n_o << "/" << n_f << " n "
-                                << n << " k " << k;
+                            ASSERT_TRUE(finite_unit_interval(full)) << "conductor cos " << cos_theta << " d " << d << " "
+                                                                    << n_o << "/" << n_f << " n " << n << " k " << k;
+                            ASSERT_TRUE(finite_unit_interval(fast)) << "conductor fast cos " << cos_theta << " d " << d
+                                                                    << " " << n_o << "/" << n_f << " n " << n << " k " << k;
                             checked += 2;
                         }
                     }

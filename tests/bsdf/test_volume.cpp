@@ -15,11 +15,11 @@
 
 namespace {
 
+using glm::vec2;
+using glm::vec3;
 using openpbr::OpenPBR_HomogeneousVolume;
 using openpbr::OpenPBR_ResolvedInputs;
 using openpbr::OpenPBR_VolumeDistanceSample;
-using glm::vec2;
-using glm::vec3;
 
 constexpr double kPi = 3.14159265358979323846;
 constexpr float kInfinity = std::numeric_limits<float>::infinity();
@@ -159,13 +159,16 @@ TEST(VolumeSpec, SubsurfaceMeanFreePathAndAlbedo)
 
 TEST(VolumeSpec, SubsurfaceColorEndpointsAndZeroRadius)
 {
-    const OpenPBR_HomogeneousVolume black = openpbr::openpbr_make_volume(subsurface_inputs(vec3(0.0f), 1.0f, vec3(1.0f), 0.0f));
-    const OpenPBR_HomogeneousVolume white = openpbr::openpbr_make_volume(subsurface_inputs(vec3(1.0f), 1.0f, vec3(1.0f), -0.5f));
+    const OpenPBR_HomogeneousVolume black =
+        openpbr::openpbr_make_volume(subsurface_inputs(vec3(0.0f), 1.0f, vec3(1.0f), 0.0f));
+    const OpenPBR_HomogeneousVolume white =
+        openpbr::openpbr_make_volume(subsurface_inputs(vec3(1.0f), 1.0f, vec3(1.0f), -0.5f));
     // The spec's fit gives s = 0.999997 at C = 0, i.e. alpha = 5.7e-6: black within the fit.
     EXPECT_LT(openpbr::openpbr_max3(black.albedo), 1e-5f);
     EXPECT_EQ(white.albedo, vec3(1.0f));  // the spec's white furnace: subsurface white must not absorb
 
-    const OpenPBR_HomogeneousVolume dense = openpbr::openpbr_make_volume(subsurface_inputs(vec3(0.5f), 0.0f, vec3(1.0f), 0.0f));
+    const OpenPBR_HomogeneousVolume dense =
+        openpbr::openpbr_make_volume(subsurface_inputs(vec3(0.5f), 0.0f, vec3(1.0f), 0.0f));
     ASSERT_TRUE(dense.is_present);
     EXPECT_EQ(dense.extinction, vec3(OPENPBR_VOLUME_EXTINCTION_MAX));
     const OpenPBR_HomogeneousVolume zero_scale =
@@ -272,9 +275,8 @@ TEST(VanDeHulst, ColorToAlbedoToColorRoundTrip)
             // also moves by dC/dalpha * (float spacing of alpha), which grows like 1/sqrt(1 - alpha):
             // that is the resolution of a float albedo, not an error of the inversion.
             const double spacing = std::ldexp(1.0, -24);
-            const double sensitivity =
-                std::fabs(van_de_hulst_color_reference(std::min(double(albedo) + spacing, 1.0), g) -
-                          van_de_hulst_color_reference(std::max(double(albedo) - spacing, 0.0), g));
+            const double sensitivity = std::fabs(van_de_hulst_color_reference(std::min(double(albedo) + spacing, 1.0), g) -
+                                                 van_de_hulst_color_reference(std::max(double(albedo) - spacing, 0.0), g));
             const double tolerance = 1.5e-5 + 2.0 * sensitivity;
             EXPECT_NEAR(van_de_hulst_color_reference(albedo, g), color, tolerance) << "g " << g << " C " << color;
             // The float forward function agrees with the double reference to the same resolution.
@@ -418,7 +420,7 @@ TEST(HenyeyGreenstein, SamplingMatchesPdfChiSquare)
         // the narrow forward peak gets bins of comparable probability.
         const double sign = g >= 0.0f ? 1.0 : -1.0;
         const double delta = std::max((1.0 - std::fabs(double(g))) * (1.0 - std::fabs(double(g))), 1e-12);
-        const double v_low = std::log(delta);        // x = 1
+        const double v_low = std::log(delta);         // x = 1
         const double v_high = std::log(2.0 + delta);  // x = -1
         std::vector<double> observed(bins, 0.0);
         double mean_perpendicular_x = 0.0;
@@ -577,12 +579,14 @@ TEST(VolumeDistanceSampling, GrayMediumWeightIsAlbedo)
     // Equal extinction in all channels: the MIS pdf is the plain exponential, so the scatter
     // weight is exactly the albedo and the pass-through weight exactly 1.
     const OpenPBR_HomogeneousVolume volume = make_test_volume(vec3(2.0f), vec3(0.9f, 0.5f, 0.1f), 0.0f);
-    const OpenPBR_VolumeDistanceSample scattered = openpbr::openpbr_volume_sample_distance(volume, vec3(1.0f), 10.0f, 0.4f, 0.5f);
+    const OpenPBR_VolumeDistanceSample scattered =
+        openpbr::openpbr_volume_sample_distance(volume, vec3(1.0f), 10.0f, 0.4f, 0.5f);
     ASSERT_TRUE(scattered.scattered);
     EXPECT_NEAR(scattered.distance, std::log(2.0f) / 2.0f, 1e-6f);
     EXPECT_NEAR(scattered.weight.x, 0.9f, 1e-5f);
     EXPECT_NEAR(scattered.weight.z, 0.1f, 1e-5f);
-    const OpenPBR_VolumeDistanceSample passed = openpbr::openpbr_volume_sample_distance(volume, vec3(1.0f), 0.1f, 0.4f, 0.5f);
+    const OpenPBR_VolumeDistanceSample passed =
+        openpbr::openpbr_volume_sample_distance(volume, vec3(1.0f), 0.1f, 0.4f, 0.5f);
     ASSERT_FALSE(passed.scattered);
     EXPECT_NEAR(passed.weight.y, 1.0f, 1e-5f);
     EXPECT_NEAR(passed.pdf, std::exp(-0.2f), 1e-6f);
@@ -616,10 +620,18 @@ void check_volume_sane(const OpenPBR_HomogeneousVolume& volume)
         ASSERT_EQ(volume.extinction, vec3(0.0f));
         ASSERT_EQ(volume.albedo, vec3(0.0f));
     }
-    const float t_values[] = {0.0f, kDenormal, 1e-30f, 1e-3f, 1.0f, 1e6f, 1e30f, std::numeric_limits<float>::max(),
+    const float t_values[] = {0.0f,      kDenormal,
+                              1e-30f,    1e-3f,
+                              1.0f,      1e6f,
+                              1e30f,     std::numeric_limits<float>::max(),
                               kInfinity, std::numeric_limits<float>::quiet_NaN()};
-    const vec3 throughputs[] = {vec3(1.0f), vec3(0.0f), vec3(1.0f, 0.0f, 0.0f), vec3(0.0f, 0.0f, 1e-3f),
-                                vec3(kDenormal, 1.0f, kDenormal), vec3(3e38f), vec3(-1.0f, 0.5f, 0.0f)};
+    const vec3 throughputs[] = {vec3(1.0f),
+                                vec3(0.0f),
+                                vec3(1.0f, 0.0f, 0.0f),
+                                vec3(0.0f, 0.0f, 1e-3f),
+                                vec3(kDenormal, 1.0f, kDenormal),
+                                vec3(3e38f),
+                                vec3(-1.0f, 0.5f, 0.0f)};
     const float u_values[] = {0.0f, 1e-7f, 0.5f, 0.99999994f, 1.0f};
     for (const float t_max : t_values)
     {
@@ -645,8 +657,8 @@ void check_volume_sane(const OpenPBR_HomogeneousVolume& volume)
                     // A scattering event needs a channel with positive throughput share.
                     ASSERT_TRUE(!sampled.scattered || openpbr::openpbr_max3(sampled.weight) > 0.0f ||
                                 openpbr::openpbr_max3(volume.albedo) == 0.0f)
-                        << "t_max " << t_max << " throughput " << throughput.x << " " << throughput.y << " "
-                        << throughput.z << " u " << u_channel << " " << u_distance;
+                        << "t_max " << t_max << " throughput " << throughput.x << " " << throughput.y << " " << throughput.z
+                        << " u " << u_channel << " " << u_distance;
                 }
             }
         }
@@ -656,7 +668,8 @@ void check_volume_sane(const OpenPBR_HomogeneousVolume& volume)
 TEST(VolumeRobustness, ExtremeInputsNeverProduceNanOrOutOfRange)
 {
     const float depths[] = {0.0f, kDenormal, 1.17549435e-38f, 1e-30f, 1e-6f, 1.0f, 1e6f, OPENPBR_LENGTH_MAX};
-    const vec3 colors[] = {vec3(0.0f), vec3(1.0f), vec3(kDenormal), vec3(0.0f, 0.5f, 1.0f), vec3(1.0f, kDenormal, 0.999999f)};
+    const vec3 colors[] = {vec3(0.0f), vec3(1.0f), vec3(kDenormal), vec3(0.0f, 0.5f, 1.0f),
+                           vec3(1.0f, kDenormal, 0.999999f)};
     const float radii[] = {0.0f, kDenormal, 1e-20f, 1.0f, OPENPBR_LENGTH_MAX};
     const vec3 scales[] = {vec3(0.0f), vec3(1.0f), vec3(1.0f, 0.5f, 0.25f), vec3(kDenormal, 1e-30f, 1.0f)};
     const float anisotropies[] = {-1.0f, -0.999f, 0.0f, 0.5f, 1.0f};

@@ -28,8 +28,8 @@ ConformanceReport run_paths(const std::vector<std::string>& paths, std::size_t q
 
 const ConformancePathResult& find_path(const ConformanceReport& report, const std::string& name)
 {
-    const auto found = std::find_if(report.paths.begin(), report.paths.end(),
-                                    [&](const auto& path) { return path.name == name; });
+    const auto found =
+        std::find_if(report.paths.begin(), report.paths.end(), [&](const auto& path) { return path.name == name; });
     if (found == report.paths.end())
     {
         throw std::runtime_error("path missing from the report: " + name);
@@ -71,8 +71,7 @@ TEST_P(ConformancePath, MatchesCpuBuild)
     {
         EXPECT_GT(channel.count, 0u) << channel.name;
     }
-    EXPECT_TRUE(openpbr::host::conformance_violations(path).empty())
-        << joined(openpbr::host::conformance_violations(path));
+    EXPECT_TRUE(openpbr::host::conformance_violations(path).empty()) << joined(openpbr::host::conformance_violations(path));
     EXPECT_EQ(path.validation_messages, 0u) << path.note;
 }
 
@@ -109,20 +108,18 @@ TEST_P(GpuLikeRounding, PooledMetricFailsPerKindMetricPasses)
         // sqrt/normalize hooks, one delta-sample weight in 10^6 queries is off by 5.7e-4
         // relative (3.6x its allowance; query 888493, a rough interface near index matching
         // whose refraction is a delta event). Every other channel passes; this asserts that.
-        violations.erase(std::remove_if(violations.begin(), violations.end(),
-                                        [](const std::string& violation) {
-                                            return violation.rfind("sample.delta.weight.", 0) == 0;
-                                        }),
-                         violations.end());
+        violations.erase(
+            std::remove_if(violations.begin(), violations.end(),
+                           [](const std::string& violation) { return violation.rfind("sample.delta.weight.", 0) == 0; }),
+            violations.end());
     }
     EXPECT_TRUE(violations.empty()) << joined(violations);
 }
 
-INSTANTIATE_TEST_SUITE_P(CpuPaths, GpuLikeRounding, ::testing::Values("cpu-fma", "cpu-fast"),
-                         [](const auto& info) {
-                             std::string name = info.param;
-                             std::replace(name.begin(), name.end(), '-', '_');
-                             return name;
-                         });
+INSTANTIATE_TEST_SUITE_P(CpuPaths, GpuLikeRounding, ::testing::Values("cpu-fma", "cpu-fast"), [](const auto& info) {
+    std::string name = info.param;
+    std::replace(name.begin(), name.end(), '-', '_');
+    return name;
+});
 
 }  // namespace

@@ -3,8 +3,8 @@
 // channel) anywhere. Each path is its own test so that ctest, which runs every test in its own
 // process, computes each path once: the CPU with 200000 samples per case, GPU paths (lavapipe
 // on machines without a GPU) with 10000, a prefix of the CPU's query stream (lavapipe runs at
-// about 1M queries/s on two cores and the runner dispatches each batch three times). The energy bound allows three standard errors of the
-// mean on top of 1.005 (for deterministic delta cases the standard error is 0).
+// about 1M queries/s on two cores and the runner dispatches each batch three times). The energy bound allows three standard
+// errors of the mean on top of 1.005 (for deterministic delta cases the standard error is 0).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -69,9 +69,8 @@ std::string describe_violations(const StabilityCaseResult& result)
     for (const auto& record : result.violations)
     {
         text << "\n  " << record.what << " at query " << record.query << ": view (" << record.view[0] << ", "
-             << record.view[1] << ", " << record.view[2] << ") light (" << record.light[0] << ", " << record.light[1]
-             << ", " << record.light[2] << ") u (" << record.u[0] << ", " << record.u[1] << ", " << record.u[2]
-             << ") outputs:";
+             << record.view[1] << ", " << record.view[2] << ") light (" << record.light[0] << ", " << record.light[1] << ", "
+             << record.light[2] << ") u (" << record.u[0] << ", " << record.u[1] << ", " << record.u[2] << ") outputs:";
         for (const float value : record.outputs)
         {
             text << " " << value;
@@ -246,8 +245,8 @@ TEST_P(StabilityPath, FiniteNonNegativeAndNoEnergyGain)
     for (const StabilityCaseResult& result : path.cases)
     {
         EXPECT_EQ(result.nonfinite + result.negative + result.bad_directions, 0u)
-            << describe_case(result.name) << ": " << result.nonfinite << " non-finite, " << result.negative
-            << " negative, " << result.bad_directions << " non-unit sample directions" << describe_violations(result);
+            << describe_case(result.name) << ": " << result.nonfinite << " non-finite, " << result.negative << " negative, "
+            << result.bad_directions << " non-unit sample directions" << describe_violations(result);
         // Noisy cases (e.g. dispersion: one channel carries weight 3) may exceed the bound by
         // sampling noise alone; three standard errors keep the check from depending on the seed.
         EXPECT_LE(result.max_mean_weight - 3.0 * result.mean_weight_standard_error, max_mean_weight)

@@ -160,17 +160,14 @@ RenderObject sphere_of(const Material& material, float radius, float x = 0.0f, f
 
 namespace openpbr::host {
 // GoogleTest prints the parameter by this name in test listings (ctest shows it).
-void PrintTo(RenderBackend backend, std::ostream* stream)
-{
-    *stream << to_string(backend);
-}
+void PrintTo(RenderBackend backend, std::ostream* stream) { *stream << to_string(backend); }
 }  // namespace openpbr::host
 
 namespace {
 
 class NestedMedia : public ::testing::TestWithParam<RenderBackend>
 {
-protected:
+  protected:
     void SetUp() override
     {
         std::string reason;
@@ -252,8 +249,8 @@ TEST_P(NestedMedia, IndexMatchedInterfacesAreInvisible)
         const double ratio = comparison.rmse / comparison.noise;
         const std::string& name = scenes[std::size_t(cell)].label;
         std::printf("[ nested ] %s against %s (%s): RMSE %.4g, noise %.4g, ratio %.3f\n", name.c_str(),
-                    references[std::size_t(cell)].label.c_str(), to_string(GetParam()), comparison.rmse,
-                    comparison.noise, ratio);
+                    references[std::size_t(cell)].label.c_str(), to_string(GetParam()), comparison.rmse, comparison.noise,
+                    ratio);
         if (name == "air bubble in water")
         {
             EXPECT_GT(ratio, 2.0) << name;  // measured 3.7 (CPU and lavapipe)
@@ -364,7 +361,9 @@ TEST(NestedMediaScene, RejectsCellsTheKernelCannotRender)
 }
 
 INSTANTIATE_TEST_SUITE_P(Backends, NestedMedia, ::testing::Values(RenderBackend::cpu, RenderBackend::vulkan),
-                         [](const ::testing::TestParamInfo<RenderBackend>& info) { return std::string(to_string(info.param)); });
+                         [](const ::testing::TestParamInfo<RenderBackend>& info) {
+                             return std::string(to_string(info.param));
+                         });
 
 TEST(RenderFont, WidthAndWrapping)
 {

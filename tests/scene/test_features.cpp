@@ -65,7 +65,8 @@ INSTANTIATE_TEST_SUITE_P(
         DerivationCase{"defaults", [](openpbr::OpenPBR_ResolvedInputs&) {}, 0u},
         DerivationCase{"coat", [](openpbr::OpenPBR_ResolvedInputs& i) { i.coat_weight = 0.5f; }, OPENPBR_FEATURE_BIT_COAT},
         DerivationCase{"fuzz", [](openpbr::OpenPBR_ResolvedInputs& i) { i.fuzz_weight = 1.0f; }, OPENPBR_FEATURE_BIT_FUZZ},
-        DerivationCase{"metal", [](openpbr::OpenPBR_ResolvedInputs& i) { i.base_metalness = 1.0f; }, OPENPBR_FEATURE_BIT_METAL},
+        DerivationCase{"metal", [](openpbr::OpenPBR_ResolvedInputs& i) { i.base_metalness = 1.0f; },
+                       OPENPBR_FEATURE_BIT_METAL},
         DerivationCase{"transmission", [](openpbr::OpenPBR_ResolvedInputs& i) { i.transmission_weight = 1.0f; },
                        OPENPBR_FEATURE_BIT_TRANSMISSION},
         DerivationCase{"dispersion",
@@ -273,14 +274,11 @@ TEST(CpuSpecializationBaseOnly, DefaultMaterialMatchesFullBitForBit)
 
 // ---- lavapipe: specialized pipelines against the full one ---------------------------------------
 
-double relative_error(float a, float b)
-{
-    return std::fabs(double(a) - double(b)) / std::max(std::fabs(double(b)), 1e-3);
-}
+double relative_error(float a, float b) { return std::fabs(double(a) - double(b)) / std::max(std::fabs(double(b)), 1e-3); }
 
 class GpuSpecialization : public ::testing::TestWithParam<std::string>
 {
-protected:
+  protected:
     static std::optional<openpbr::host::VulkanContext> make_context(std::string& error)
     {
         return openpbr::host::VulkanContext::create(openpbr::host::VulkanOptions{}, &error);
@@ -318,8 +316,7 @@ TEST_P(GpuSpecialization, PerMaterialPipelinesMatchFullPipeline)
     }
     constexpr std::size_t result_floats = 24;  // OPENPBR_RESULT_FLOATS of the conformance kernel
     EXPECT_LE(worst, 1e-6) << "output " << worst_index % result_floats << " of query " << worst_index / result_floats
-                           << ": specialized " << specialized.results[worst_index]
-                           << ", full " << full.results[worst_index];
+                           << ": specialized " << specialized.results[worst_index] << ", full " << full.results[worst_index];
 }
 
 TEST_P(GpuSpecialization, PipelineCacheBuildsEachSetOnceAndRefusesWrongSet)
@@ -344,9 +341,8 @@ TEST_P(GpuSpecialization, PipelineCacheBuildsEachSetOnceAndRefusesWrongSet)
                                                                 std::uint32_t(0), 1),
                  openpbr::host::FeatureError);
     openpbr::host::ComputePipelineDescription description;
-    description.spirv_words = openpbr::host::load_spirv_file(std::string(OPENPBR_KERNEL_DIR) +
-                                                            (GetParam() == "glsl-spirv" ? "/conformance.glsl.spv"
-                                                                                        : "/conformance.slang.spv"));
+    description.spirv_words = openpbr::host::load_spirv_file(
+        std::string(OPENPBR_KERNEL_DIR) + (GetParam() == "glsl-spirv" ? "/conformance.glsl.spv" : "/conformance.slang.spv"));
     description.bindings = {{0, false}, {1, false}, {2, false}, {3, false}, {4, false}, {5, false}};
     openpbr::host::SpecializedPipelineCache cache(*context, description);
     openpbr::host::ComputePipeline& first = cache.pipeline(OPENPBR_FEATURE_BIT_METAL);
@@ -366,7 +362,8 @@ class KernelSpecIds : public ::testing::TestWithParam<std::string>
 
 TEST_P(KernelSpecIds, EveryToggleHasItsStableId)
 {
-    const std::vector<std::uint32_t> words = openpbr::host::load_spirv_file(std::string(OPENPBR_KERNEL_DIR) + "/" + GetParam());
+    const std::vector<std::uint32_t> words =
+        openpbr::host::load_spirv_file(std::string(OPENPBR_KERNEL_DIR) + "/" + GetParam());
     std::vector<bool> seen(OPENPBR_SPECIALIZATION_CONSTANT_COUNT, false);
     constexpr std::uint32_t op_decorate = 71;
     constexpr std::uint32_t decoration_spec_id = 1;

@@ -32,7 +32,7 @@ struct InputCase
 {
     std::string name;
     std::string type;
-    std::string non_default_value;          // written to a file by the round-trip test
+    std::string non_default_value;            // written to a file by the round-trip test
     std::vector<float> expected_non_default;  // what the loader must produce from it
     std::function<std::vector<float>(const OpenPBR_ResolvedInputs&)> read;
 };
@@ -43,43 +43,83 @@ const std::vector<InputCase>& input_cases()
     static const std::vector<InputCase> cases = {
         {"base_weight", "float", "0.25", {0.25f}, [](const Inputs& i) { return as_list(i.base_weight); }},
         {"base_color", "color3", "0.1, 0.2, 0.3", {0.1f, 0.2f, 0.3f}, [](const Inputs& i) { return as_list(i.base_color); }},
-        {"base_diffuse_roughness", "float", "0.7", {0.7f}, [](const Inputs& i) { return as_list(i.base_diffuse_roughness); }},
+        {"base_diffuse_roughness",
+         "float",
+         "0.7",
+         {0.7f},
+         [](const Inputs& i) { return as_list(i.base_diffuse_roughness); }},
         {"base_metalness", "float", "0.9", {0.9f}, [](const Inputs& i) { return as_list(i.base_metalness); }},
         {"specular_weight", "float", "0.6", {0.6f}, [](const Inputs& i) { return as_list(i.specular_weight); }},
-        {"specular_color", "color3", "0.4,0.5,0.6", {0.4f, 0.5f, 0.6f},
+        {"specular_color",
+         "color3",
+         "0.4,0.5,0.6",
+         {0.4f, 0.5f, 0.6f},
          [](const Inputs& i) { return as_list(i.specular_color); }},
         {"specular_roughness", "float", "0.05", {0.05f}, [](const Inputs& i) { return as_list(i.specular_roughness); }},
-        {"specular_roughness_anisotropy", "float", "0.8", {0.8f},
+        {"specular_roughness_anisotropy",
+         "float",
+         "0.8",
+         {0.8f},
          [](const Inputs& i) { return as_list(i.specular_roughness_anisotropy); }},
         {"specular_ior", "float", "1.33", {1.33f}, [](const Inputs& i) { return as_list(i.specular_ior); }},
         {"transmission_weight", "float", "0.5", {0.5f}, [](const Inputs& i) { return as_list(i.transmission_weight); }},
-        {"transmission_color", "color3", "0.9, 0.8, 0.7", {0.9f, 0.8f, 0.7f},
+        {"transmission_color",
+         "color3",
+         "0.9, 0.8, 0.7",
+         {0.9f, 0.8f, 0.7f},
          [](const Inputs& i) { return as_list(i.transmission_color); }},
         {"transmission_depth", "float", "2.5", {2.5f}, [](const Inputs& i) { return as_list(i.transmission_depth); }},
-        {"transmission_scatter", "color3", "0.1, 0.1, 0.2", {0.1f, 0.1f, 0.2f},
+        {"transmission_scatter",
+         "color3",
+         "0.1, 0.1, 0.2",
+         {0.1f, 0.1f, 0.2f},
          [](const Inputs& i) { return as_list(i.transmission_scatter); }},
-        {"transmission_scatter_anisotropy", "float", "-0.3", {-0.3f},
+        {"transmission_scatter_anisotropy",
+         "float",
+         "-0.3",
+         {-0.3f},
          [](const Inputs& i) { return as_list(i.transmission_scatter_anisotropy); }},
-        {"transmission_dispersion_scale", "float", "0.75", {0.75f},
+        {"transmission_dispersion_scale",
+         "float",
+         "0.75",
+         {0.75f},
          [](const Inputs& i) { return as_list(i.transmission_dispersion_scale); }},
-        {"transmission_dispersion_abbe_number", "float", "58", {58.0f},
+        {"transmission_dispersion_abbe_number",
+         "float",
+         "58",
+         {58.0f},
          [](const Inputs& i) { return as_list(i.transmission_dispersion_abbe_number); }},
         {"subsurface_weight", "float", "0.4", {0.4f}, [](const Inputs& i) { return as_list(i.subsurface_weight); }},
-        {"subsurface_color", "color3", "0.7, 0.3, 0.2", {0.7f, 0.3f, 0.2f},
+        {"subsurface_color",
+         "color3",
+         "0.7, 0.3, 0.2",
+         {0.7f, 0.3f, 0.2f},
          [](const Inputs& i) { return as_list(i.subsurface_color); }},
         {"subsurface_radius", "float", "3", {3.0f}, [](const Inputs& i) { return as_list(i.subsurface_radius); }},
-        {"subsurface_radius_scale", "color3", "0.2, 0.3, 0.4", {0.2f, 0.3f, 0.4f},
+        {"subsurface_radius_scale",
+         "color3",
+         "0.2, 0.3, 0.4",
+         {0.2f, 0.3f, 0.4f},
          [](const Inputs& i) { return as_list(i.subsurface_radius_scale); }},
-        {"subsurface_scatter_anisotropy", "float", "0.6", {0.6f},
+        {"subsurface_scatter_anisotropy",
+         "float",
+         "0.6",
+         {0.6f},
          [](const Inputs& i) { return as_list(i.subsurface_scatter_anisotropy); }},
         {"fuzz_weight", "float", "1", {1.0f}, [](const Inputs& i) { return as_list(i.fuzz_weight); }},
         {"fuzz_color", "color3", "0.3, 0.2, 0.1", {0.3f, 0.2f, 0.1f}, [](const Inputs& i) { return as_list(i.fuzz_color); }},
         {"fuzz_roughness", "float", "0.9", {0.9f}, [](const Inputs& i) { return as_list(i.fuzz_roughness); }},
         {"coat_weight", "float", "1.0", {1.0f}, [](const Inputs& i) { return as_list(i.coat_weight); }},
-        {"coat_color", "color3", "0.95, 0.9, 0.85", {0.95f, 0.9f, 0.85f},
+        {"coat_color",
+         "color3",
+         "0.95, 0.9, 0.85",
+         {0.95f, 0.9f, 0.85f},
          [](const Inputs& i) { return as_list(i.coat_color); }},
         {"coat_roughness", "float", "0.15", {0.15f}, [](const Inputs& i) { return as_list(i.coat_roughness); }},
-        {"coat_roughness_anisotropy", "float", "0.35", {0.35f},
+        {"coat_roughness_anisotropy",
+         "float",
+         "0.35",
+         {0.35f},
          [](const Inputs& i) { return as_list(i.coat_roughness_anisotropy); }},
         {"coat_ior", "float", "1.45", {1.45f}, [](const Inputs& i) { return as_list(i.coat_ior); }},
         {"coat_darkening", "float", "0.5", {0.5f}, [](const Inputs& i) { return as_list(i.coat_darkening); }},
@@ -87,20 +127,38 @@ const std::vector<InputCase>& input_cases()
         {"thin_film_thickness", "float", "0.32", {0.32f}, [](const Inputs& i) { return as_list(i.thin_film_thickness); }},
         {"thin_film_ior", "float", "1.9", {1.9f}, [](const Inputs& i) { return as_list(i.thin_film_ior); }},
         {"emission_luminance", "float", "1000", {1000.0f}, [](const Inputs& i) { return as_list(i.emission_luminance); }},
-        {"emission_color", "color3", "1, 0.5, 0.2", {1.0f, 0.5f, 0.2f},
+        {"emission_color",
+         "color3",
+         "1, 0.5, 0.2",
+         {1.0f, 0.5f, 0.2f},
          [](const Inputs& i) { return as_list(i.emission_color); }},
         {"geometry_opacity", "float", "0.2", {0.2f}, [](const Inputs& i) { return as_list(i.geometry_opacity); }},
-        {"geometry_thin_walled", "boolean", "true", {1.0f},
+        {"geometry_thin_walled",
+         "boolean",
+         "true",
+         {1.0f},
          [](const Inputs& i) { return as_list(i.geometry_thin_walled ? 1.0f : 0.0f); }},
         // The frame vectors come back through the bases; the values are chosen orthonormal so
         // the loader's Gram-Schmidt leaves them unchanged.
-        {"geometry_normal", "vector3", "0, 1, 0", {0.0f, 1.0f, 0.0f},
+        {"geometry_normal",
+         "vector3",
+         "0, 1, 0",
+         {0.0f, 1.0f, 0.0f},
          [](const Inputs& i) { return as_list(i.geometry_basis.normal); }},
-        {"geometry_tangent", "vector3", "0, 0, 1", {0.0f, 0.0f, 1.0f},
+        {"geometry_tangent",
+         "vector3",
+         "0, 0, 1",
+         {0.0f, 0.0f, 1.0f},
          [](const Inputs& i) { return as_list(i.geometry_basis.tangent); }},
-        {"geometry_coat_normal", "vector3", "1, 0, 0", {1.0f, 0.0f, 0.0f},
+        {"geometry_coat_normal",
+         "vector3",
+         "1, 0, 0",
+         {1.0f, 0.0f, 0.0f},
          [](const Inputs& i) { return as_list(i.geometry_coat_basis.normal); }},
-        {"geometry_coat_tangent", "vector3", "0, 1, 0", {0.0f, 1.0f, 0.0f},
+        {"geometry_coat_tangent",
+         "vector3",
+         "0, 1, 0",
+         {0.0f, 1.0f, 0.0f},
          [](const Inputs& i) { return as_list(i.geometry_coat_basis.tangent); }},
     };
     return cases;
@@ -112,8 +170,8 @@ void expect_unset_inputs_are_defaults(const Material& material)
     const OpenPBR_ResolvedInputs defaults = openpbr::openpbr_make_default_resolved_inputs();
     for (const InputCase& input : input_cases())
     {
-        const bool is_set = std::find(material.inputs_set.begin(), material.inputs_set.end(), input.name) !=
-                            material.inputs_set.end();
+        const bool is_set =
+            std::find(material.inputs_set.begin(), material.inputs_set.end(), input.name) != material.inputs_set.end();
         if (!is_set)
         {
             EXPECT_EQ(input.read(material.inputs), input.read(defaults)) << material.name << ": " << input.name;
@@ -146,7 +204,7 @@ std::size_t count_mtlx_files(const std::filesystem::path& directory)
 // the same test binary (e.g. ctest -j with repeats) from sharing files.
 class MaterialFileTest : public ::testing::Test
 {
-protected:
+  protected:
     void SetUp() override
     {
         const std::string test_name = ::testing::UnitTest::GetInstance()->current_test_info()->name();
@@ -356,8 +414,8 @@ TEST_F(MaterialFileTest, EveryInputRoundTrips)
     std::string inputs;
     for (const InputCase& input : input_cases())
     {
-        inputs += "    <input name=\"" + input.name + "\" type=\"" + input.type + "\" value=\"" +
-                  input.non_default_value + "\" />\n";
+        inputs += "    <input name=\"" + input.name + "\" type=\"" + input.type + "\" value=\"" + input.non_default_value +
+                  "\" />\n";
     }
     const std::vector<Material> materials = openpbr::host::load_materialx_file(write_surface("all.mtlx", inputs));
     ASSERT_EQ(materials.size(), 1u);
@@ -372,9 +430,9 @@ TEST_F(MaterialFileTest, EveryInputRoundTrips)
 
 TEST_F(MaterialFileTest, ValuesOutsideTheSpecRangeAreKept)
 {
-    const std::vector<Material> materials = openpbr::host::load_materialx_file(write_surface(
-        "range.mtlx", "    <input name=\"base_color\" type=\"color3\" value=\" 2, -1 ,+0.5 \" />\n"
-                      "    <input name=\"specular_ior\" type=\"float\" value=\"-3e0\" />\n"));
+    const std::vector<Material> materials = openpbr::host::load_materialx_file(
+        write_surface("range.mtlx", "    <input name=\"base_color\" type=\"color3\" value=\" 2, -1 ,+0.5 \" />\n"
+                                    "    <input name=\"specular_ior\" type=\"float\" value=\"-3e0\" />\n"));
     EXPECT_EQ(materials[0].inputs.base_color, glm::vec3(2.0f, -1.0f, 0.5f));
     EXPECT_EQ(materials[0].inputs.specular_ior, -3.0f);
 }
@@ -456,8 +514,8 @@ TEST_F(MaterialFileTest, UnreadableFile)
 
 TEST_F(MaterialFileTest, MalformedXml)
 {
-    const std::string message = load_error_message(
-        write_surface("broken.mtlx", "    <input name=\"base_weight\" type=\"float\" value=\"1\">\n"));
+    const std::string message =
+        load_error_message(write_surface("broken.mtlx", "    <input name=\"base_weight\" type=\"float\" value=\"1\">\n"));
     EXPECT_CONTAINS(message, "broken.mtlx:");
     EXPECT_CONTAINS(message, "malformed XML");
 }
@@ -523,16 +581,16 @@ TEST_F(MaterialFileTest, BadValues)
 
     for (const char* const bad : {"inf", "nan", "-INF", "1e39"})
     {
-        const std::string finite = load_error_message(
-            write_surface("finite.mtlx", "    <input name=\"specular_ior\" type=\"float\" value=\"" + std::string(bad) + "\" />\n"));
+        const std::string finite = load_error_message(write_surface(
+            "finite.mtlx", "    <input name=\"specular_ior\" type=\"float\" value=\"" + std::string(bad) + "\" />\n"));
         EXPECT_CONTAINS(finite, "finite.mtlx");
         EXPECT_CONTAINS(finite, "'specular_ior'");
     }
 
     for (const char* const bad : {"", " ", "1.5x", "0x1p0", "1,,2"})
     {
-        const std::string garbage = load_error_message(
-            write_surface("garbage.mtlx", "    <input name=\"specular_ior\" type=\"float\" value=\"" + std::string(bad) + "\" />\n"));
+        const std::string garbage = load_error_message(write_surface(
+            "garbage.mtlx", "    <input name=\"specular_ior\" type=\"float\" value=\"" + std::string(bad) + "\" />\n"));
         EXPECT_CONTAINS(garbage, "'specular_ior'");
     }
 

@@ -48,15 +48,15 @@ template <typename Visit> void for_each_float(Inputs& inputs, Visit visit)
     visit(#name, inputs.name.y);                                      \
     visit(#name, inputs.name.z);
 #define VISIT_VECTOR2(name, default_x, default_y) \
-    visit(#name, inputs.name.x);                 \
+    visit(#name, inputs.name.x);                  \
     visit(#name, inputs.name.y);
 #define VISIT_BOOL(name, default_value)
-#define VISIT_BASIS(name, normal_input, tangent_input)                                                        \
-    for (glm::vec3* vector : {&inputs.name.tangent, &inputs.name.bitangent, &inputs.name.normal})           \
-    {                                                                                                         \
-        visit(#name, vector->x);                                                                              \
-        visit(#name, vector->y);                                                                              \
-        visit(#name, vector->z);                                                                              \
+#define VISIT_BASIS(name, normal_input, tangent_input)                                             \
+    for (glm::vec3 * vector : {&inputs.name.tangent, &inputs.name.bitangent, &inputs.name.normal}) \
+    {                                                                                              \
+        visit(#name, vector->x);                                                                   \
+        visit(#name, vector->y);                                                                   \
+        visit(#name, vector->z);                                                                   \
     }
     OPENPBR_PARAMETERS(VISIT_FLOAT, VISIT_COLOR, VISIT_VECTOR2, VISIT_BOOL, VISIT_BASIS)
 #undef VISIT_FLOAT
@@ -76,12 +76,12 @@ TEST(ParameterTable, DefaultsAreTheTables)
 #define CHECK_BOOL(name, default_value) EXPECT_EQ(defaults.name, default_value) << #name;
 // geometry_basis defaults to the +z frame; geometry_coat_basis to all zero, "follow the base
 // frame" (resolved by the input contract, slang/openpbr_resolved_inputs.h).
-#define CHECK_BASIS(name, normal_input, tangent_input)                                                  \
-    EXPECT_EQ(defaults.name.normal, std::string(#name) == "geometry_coat_basis" ? glm::vec3(0.0f)      \
-                                                                                : glm::vec3(0.0f, 0.0f, 1.0f)) \
-        << #name;                                                                                       \
-    EXPECT_EQ(defaults.name.tangent, std::string(#name) == "geometry_coat_basis" ? glm::vec3(0.0f)     \
-                                                                                 : glm::vec3(1.0f, 0.0f, 0.0f)) \
+#define CHECK_BASIS(name, normal_input, tangent_input)                                                     \
+    EXPECT_EQ(defaults.name.normal,                                                                        \
+              std::string(#name) == "geometry_coat_basis" ? glm::vec3(0.0f) : glm::vec3(0.0f, 0.0f, 1.0f)) \
+        << #name;                                                                                          \
+    EXPECT_EQ(defaults.name.tangent,                                                                       \
+              std::string(#name) == "geometry_coat_basis" ? glm::vec3(0.0f) : glm::vec3(1.0f, 0.0f, 0.0f)) \
         << #name;
     OPENPBR_PARAMETERS(CHECK_FLOAT, CHECK_COLOR, CHECK_VECTOR2, CHECK_BOOL, CHECK_BASIS)
 #undef CHECK_FLOAT
@@ -149,8 +149,7 @@ TEST(ParameterTable, ContractClampsToTheTablesRange)
         bool to_high;
     };
     const Inputs defaults = openpbr::openpbr_make_default_resolved_inputs();
-    auto check = [&](const char* name, float Inputs::*scalar, glm::vec3 Inputs::*color, const float low,
-                     const float high) {
+    auto check = [&](const char* name, float Inputs::*scalar, glm::vec3 Inputs::*color, const float low, const float high) {
         const float inside = 0.5f * low + 0.5f * high;
         for (int channel = 0; channel < (color ? 3 : 1); ++channel)
         {
@@ -251,8 +250,9 @@ TEST(ParameterTable, LoaderStoresEveryInputInItsField)
                 expected.*(other.field) = openpbr::openpbr_make_basis(glm::vec3(0.0f, 0.0f, 1.0f));
             }
             openpbr::OpenPBR_Basis& basis = expected.*(openpbr::host::parameter_bases()[vector->basis].field);
-            basis = vector->tangent ? openpbr::openpbr_make_basis(glm::vec3(0.0f, 0.0f, 1.0f), glm::vec3(0.0f, 1.0f, 0.0f), 1.0f)
-                                    : openpbr::openpbr_make_basis(glm::vec3(0.6f, 0.0f, 0.8f));
+            basis = vector->tangent
+                        ? openpbr::openpbr_make_basis(glm::vec3(0.0f, 0.0f, 1.0f), glm::vec3(0.0f, 1.0f, 0.0f), 1.0f)
+                        : openpbr::openpbr_make_basis(glm::vec3(0.6f, 0.0f, 0.8f));
         }
         {
             std::ofstream file(path);
@@ -297,7 +297,8 @@ TEST(ParameterTable, CorpusReaderKnowsEveryName)
     for (const std::string& extension : extensions)
     {
         const nlohmann::json corpus = nlohmann::json::parse(
-            R"({"cases": [{"name": "probe", "view": [0, 0, 1], "lights": [[0, 0, 1]], "material": {")" + extension + R"(": [0, 1]}}]})");
+            R"({"cases": [{"name": "probe", "view": [0, 0, 1], "lights": [[0, 0, 1]], "material": {")" + extension +
+            R"(": [0, 1]}}]})");
         const auto cases = openpbr::host::parse_stability_corpus(corpus, "probe.json");
         ASSERT_EQ(cases.size(), 1u);
         Inputs inputs = cases[0].inputs;

@@ -38,8 +38,8 @@ TEST(BenchGpu, ReportsPositiveFiniteDeviceTimes)
             for (const char* operation : {"eval", "sample", "pdf"})
             {
                 const nlohmann::json& rate = entry["vulkan"][pipeline][operation];
-                ASSERT_TRUE(rate.contains("ns_per_query")) << entry["toggles"] << " " << pipeline << " " << operation
-                                                          << ": " << rate.dump();
+                ASSERT_TRUE(rate.contains("ns_per_query"))
+                    << entry["toggles"] << " " << pipeline << " " << operation << ": " << rate.dump();
                 const double ns = rate["ns_per_query"].get<double>();
                 EXPECT_TRUE(std::isfinite(ns) && ns > 0.0) << entry["toggles"] << " " << pipeline << " " << operation;
                 EXPECT_GT(rate["queries_per_second"].get<double>(), 0.0);

@@ -38,7 +38,8 @@ TEST_P(BoundedVndf, HistogramMatchesPdf)
     int above = 0;
     for (int s = 0; s < samples; ++s)
     {
-        const glm::vec3 h = openpbr::openpbr_sample_vndf_bounded(view, alpha, glm::vec2(uniform(generator), uniform(generator)));
+        const glm::vec3 h =
+            openpbr::openpbr_sample_vndf_bounded(view, alpha, glm::vec2(uniform(generator), uniform(generator)));
         const glm::vec3 light = glm::reflect(-view, h);
         if (light.z <= 0.0f)
         {

@@ -44,10 +44,9 @@ TEST_P(FastMathHooks, StayWithinTheStatedError)
     }
 }
 
-INSTANTIATE_TEST_SUITE_P(Decades, FastMathHooks, testing::Range(-30, 30, 3),
-                         [](const testing::TestParamInfo<int>& info) {
-                             return "decade_" + std::string(info.param < 0 ? "m" : "") + std::to_string(std::abs(info.param));
-                         });
+INSTANTIATE_TEST_SUITE_P(Decades, FastMathHooks, testing::Range(-30, 30, 3), [](const testing::TestParamInfo<int>& info) {
+    return "decade_" + std::string(info.param < 0 ? "m" : "") + std::to_string(std::abs(info.param));
+});
 
 TEST(FastMathHooksEdges, ZeroAndInfinityKeepTheirMeaning)
 {

@@ -68,18 +68,17 @@ TEST_P(SingleScattering, WalkOfOneBounceMatchesQuadrature)
     EXPECT_EQ(walk.transmitted, 0.0);
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    Reflection, SingleScattering,
-    testing::Values(WalkCase{MicrosurfaceKind::conductor_white, 0.01, 0.5, 1.0},
-                    WalkCase{MicrosurfaceKind::conductor_white, 0.25, 0.1, 1.0},
-                    WalkCase{MicrosurfaceKind::conductor_white, 0.25, 0.9, 1.0},
-                    WalkCase{MicrosurfaceKind::conductor_white, 1.0, 0.5, 1.0},
-                    WalkCase{MicrosurfaceKind::conductor_schlick, 0.36, 0.3, 0.5},
-                    WalkCase{MicrosurfaceKind::conductor_schlick, 0.64, 0.8, 0.9},
-                    WalkCase{MicrosurfaceKind::dielectric_reflect, 0.09, 0.2, 1.5},
-                    WalkCase{MicrosurfaceKind::dielectric_reflect, 0.49, 0.7, 1.5},
-                    WalkCase{MicrosurfaceKind::dielectric_reflect, 0.49, 0.7, 0.6}),
-    case_name);
+INSTANTIATE_TEST_SUITE_P(Reflection, SingleScattering,
+                         testing::Values(WalkCase{MicrosurfaceKind::conductor_white, 0.01, 0.5, 1.0},
+                                         WalkCase{MicrosurfaceKind::conductor_white, 0.25, 0.1, 1.0},
+                                         WalkCase{MicrosurfaceKind::conductor_white, 0.25, 0.9, 1.0},
+                                         WalkCase{MicrosurfaceKind::conductor_white, 1.0, 0.5, 1.0},
+                                         WalkCase{MicrosurfaceKind::conductor_schlick, 0.36, 0.3, 0.5},
+                                         WalkCase{MicrosurfaceKind::conductor_schlick, 0.64, 0.8, 0.9},
+                                         WalkCase{MicrosurfaceKind::dielectric_reflect, 0.09, 0.2, 1.5},
+                                         WalkCase{MicrosurfaceKind::dielectric_reflect, 0.49, 0.7, 1.5},
+                                         WalkCase{MicrosurfaceKind::dielectric_reflect, 0.49, 0.7, 0.6}),
+                         case_name);
 
 class LosslessWalk : public testing::TestWithParam<WalkCase>
 {
@@ -125,8 +124,9 @@ TEST_P(ShippedTables, AgreeWithTheRandomWalk)
     material.eta = c.eta;
     material.kind = c.table == 0 ? MicrosurfaceKind::conductor_white : MicrosurfaceKind::dielectric_reflect;
     const auto walk = openpbr::host::microsurface_albedo(material, c.mu, 1, 1u << 17, 3);
-    const float table = c.table == 0 ? openpbr::openpbr_ggx_albedo(float(c.mu), float(alpha))
-                                     : openpbr::openpbr_dielectric_reflection_albedo(float(c.mu), float(alpha), float(c.eta));
+    const float table = c.table == 0
+                            ? openpbr::openpbr_ggx_albedo(float(c.mu), float(alpha))
+                            : openpbr::openpbr_dielectric_reflection_albedo(float(c.mu), float(alpha), float(c.eta));
     if (c.table == 1 && c.eta < 1.0)
     {
         // Below eta = 1 the look-up may round E_R up to the larger bracketing node along eta

@@ -173,9 +173,8 @@ double quadrature_albedo(const int table, const double mu_value, const double r,
                 if (side == 0)
                 {
                     const vec3 h = openpbr::normalize(wo + wi);
-                    const float f = table == lut_table_ggx_albedo
-                                        ? 1.0f
-                                        : openpbr::openpbr_fresnel_dielectric(openpbr::dot(wo, h), eta);
+                    const float f =
+                        table == lut_table_ggx_albedo ? 1.0f : openpbr::openpbr_fresnel_dielectric(openpbr::dot(wo, h), eta);
                     value = f * openpbr::openpbr_ggx_d(h, alpha) * g2 / (4.0f * wo.z);
                 }
                 else
@@ -302,16 +301,18 @@ TEST(LutGenerator, AnisotropicAlbedosAreAlbedos)
     {
         for (int mu = 0; mu < n4; mu += 3)
         {
-            const double isotropic =
-                estimate_lut_entry(lut_table_ggx_albedo, node(mu, n4), node(r, n4), 0.5, 16384, lut_cell_seed(0, 7919u * r + mu, 1));
+            const double isotropic = estimate_lut_entry(lut_table_ggx_albedo, node(mu, n4), node(r, n4), 0.5, 16384,
+                                                        lut_cell_seed(0, 7919u * r + mu, 1));
             for (int a = 0; a < m4; ++a)
             {
                 for (int phi = 0; phi < m4; ++phi)
                 {
                     const double albedo = at_4d(shipped(), mu, r, a, phi) * isotropic;
                     largest = std::max(largest, albedo);
-                    EXPECT_GT(albedo, 0.2) << "mu node " << mu << ", r node " << r << ", a node " << a << ", phi node " << phi;
-                    EXPECT_LE(albedo, 1.0 + 1e-3) << "mu node " << mu << ", r node " << r << ", a node " << a << ", phi node " << phi;
+                    EXPECT_GT(albedo, 0.2)
+                        << "mu node " << mu << ", r node " << r << ", a node " << a << ", phi node " << phi;
+                    EXPECT_LE(albedo, 1.0 + 1e-3)
+                        << "mu node " << mu << ", r node " << r << ", a node " << a << ", phi node " << phi;
                 }
             }
         }
@@ -346,9 +347,9 @@ TEST(LutGenerator, AnisotropicTableMatchesAnIndependentQuadrature)
     const int last = n4 - 1;
     const int top_a = m4 - 3;
     const Point points[] = {
-        {last, last, top_a, 0},           {last / 2, (2 * last) / 3, top_a / 2, (m4 - 1) / 3},
-        {last / 4, last, top_a, 0},       {last / 4, last, top_a, m4 - 1},
-        {last / 3, last / 2, top_a, 1},   {2, last, top_a - 1, (m4 - 1) / 2},
+        {last, last, top_a, 0},         {last / 2, (2 * last) / 3, top_a / 2, (m4 - 1) / 3},
+        {last / 4, last, top_a, 0},     {last / 4, last, top_a, m4 - 1},
+        {last / 3, last / 2, top_a, 1}, {2, last, top_a - 1, (m4 - 1) / 2},
     };
     double worst = 0.0;
     for (const Point& p : points)
@@ -383,8 +384,9 @@ TEST(LutGenerator, AzimuthCoordinateMatchesTheShadingLanguage)
                 {
                     const double cos_phi_squared = double(i) / 20.0;
                     const double coordinate = lut_azimuth_coordinate(mu, r, a, cos_phi_squared);
-                    EXPECT_NEAR(openpbr::openpbr_lut_azimuth_coordinate(float(mu), float(r), float(a), float(cos_phi_squared)),
-                                coordinate, 1e-5);
+                    EXPECT_NEAR(
+                        openpbr::openpbr_lut_azimuth_coordinate(float(mu), float(r), float(a), float(cos_phi_squared)),
+                        coordinate, 1e-5);
                     EXPECT_GE(coordinate, previous);
                     previous = coordinate;
                     // The inverse is ill-conditioned only where the map is flat (grazing, a -> 1).
@@ -431,7 +433,8 @@ TEST(LutGenerator, AnisotropicLookUpReturnsTheNodeValues)
     {
         for (const float r : {0.2f, 0.55f, 0.9f})
         {
-            EXPECT_NEAR(openpbr::openpbr_ggx_albedo_anisotropic(mu, r, 0.0f, 0.4f), openpbr::openpbr_ggx_albedo(mu, r * r), 1e-6)
+            EXPECT_NEAR(openpbr::openpbr_ggx_albedo_anisotropic(mu, r, 0.0f, 0.4f), openpbr::openpbr_ggx_albedo(mu, r * r),
+                        1e-6)
                 << "mu " << mu << ", r " << r;
         }
     }
@@ -509,8 +512,8 @@ TEST(LutGenerator, SmoothInterfaceConservesEnergy)
         const int critical_node = (n3 - 1) / 2;
         for (int mu = 1; mu < n3; ++mu)
         {
-            if (mu_of_node(mu, x) < 0.0017 || (lut_critical_cosine(eta_of_node(x)) < 0.1 &&
-                                               mu >= critical_node - 5 && mu <= critical_node + 1))
+            if (mu_of_node(mu, x) < 0.0017 ||
+                (lut_critical_cosine(eta_of_node(x)) < 0.1 && mu >= critical_node - 5 && mu <= critical_node + 1))
             {
                 continue;
             }
@@ -548,7 +551,8 @@ TEST(LutGenerator, ShippedTablesMatchAnIndependentQuadrature)
     // resolves (eta 1.015, alpha 0.25, mu 0.17: quadrature 0.8382, the table and 2^20-sample
     // Monte Carlo 0.8339).
     const Point points[] = {
-        {lut_table_ggx_albedo, n2 - 1, n2 - 1, 0},     {lut_table_ggx_albedo, n2 / 4, (2 * n2) / 3, 0},
+        {lut_table_ggx_albedo, n2 - 1, n2 - 1, 0},
+        {lut_table_ggx_albedo, n2 / 4, (2 * n2) / 3, 0},
         {lut_table_ggx_albedo, 1, n2 - 1, 0},
         {lut_table_dielectric_reflection, last / 2, last / 2, e3 - 6},
         {lut_table_dielectric_reflection, last / 5, last, 4},
@@ -566,13 +570,13 @@ TEST(LutGenerator, ShippedTablesMatchAnIndependentQuadrature)
         const double reference =
             quadrature_albedo(p.table, dielectric ? mu_of_node(p.mu, p.x) : lut_mu_from_coordinate(node(p.mu, n)),
                               node(p.r, n), dielectric ? eta_of_node(p.x) : 1.0);
-        const float value = p.table == lut_table_ggx_albedo ? at_2d(shipped(), p.mu, p.r)
-                                                            : at_3d(shipped(), p.table, p.mu, p.r, p.x);
+        const float value =
+            p.table == lut_table_ggx_albedo ? at_2d(shipped(), p.mu, p.r) : at_3d(shipped(), p.table, p.mu, p.r, p.x);
         // Observed: |table - quadrature| from 6e-7 to 5.6e-4 (the latter in a cell with a total
         // internal reflection boundary, where the midpoint rule is least accurate and the 16384
         // sample estimate noisiest).
-        EXPECT_NEAR(value, reference, 1e-3) << lut_table_name(p.table) << " at node mu " << p.mu << ", r " << p.r
-                                            << ", x " << p.x;
+        EXPECT_NEAR(value, reference, 1e-3)
+            << lut_table_name(p.table) << " at node mu " << p.mu << ", r " << p.r << ", x " << p.x;
     }
 }
 
@@ -650,7 +654,7 @@ TEST(LutGenerator, HalfPrecisionRounding)
 {
     EXPECT_EQ(round_to_half(1.0f), 1.0f);
     EXPECT_EQ(round_to_half(0.0f), 0.0f);
-    EXPECT_EQ(round_to_half(1.0f + std::ldexp(1.0f, -11)), 1.0f);                          // tie -> even
+    EXPECT_EQ(round_to_half(1.0f + std::ldexp(1.0f, -11)), 1.0f);                                // tie -> even
     EXPECT_EQ(round_to_half(1.0f + 3.0f * std::ldexp(1.0f, -11)), 1.0f + std::ldexp(1.0f, -9));  // tie -> even
     EXPECT_EQ(round_to_half(1.0f + std::ldexp(1.0f, -11) + std::ldexp(1.0f, -20)), 1.0f + std::ldexp(1.0f, -10));
     EXPECT_EQ(round_to_half(2.0f - std::ldexp(1.0f, -12)), 2.0f);  // carry into the exponent
@@ -716,7 +720,7 @@ TEST(LutGenerator, RejectsInvalidOptions)
 
 class LutFiles : public ::testing::Test
 {
-protected:
+  protected:
     void SetUp() override
     {
         const ::testing::UnitTest& unit_test = *::testing::UnitTest::GetInstance();

@@ -37,16 +37,17 @@ struct Expected
 Expected expected_values()
 {
     Expected expected;
-#define OPENPBR_EXPECT_EXPORTED(type, name) expected.values.push_back(bits_of(name)); expected.names.push_back(#name);
+#define OPENPBR_EXPECT_EXPORTED(type, name)   \
+    expected.values.push_back(bits_of(name)); \
+    expected.names.push_back(#name);
     OPENPBR_MODULE_CONSTANTS(OPENPBR_EXPECT_EXPORTED)
 #undef OPENPBR_EXPECT_EXPORTED
     for (const std::uint32_t lobe_type : probe_lobe_types)
     {
-        expected.values.push_back((openpbr_lobe_type_is_reflection(lobe_type) ? 1u : 0u) |
-                                  (openpbr_lobe_type_is_transmission(lobe_type) ? 2u : 0u) |
-                                  (openpbr_lobe_type_is_diffuse(lobe_type) ? 4u : 0u) |
-                                  (openpbr_lobe_type_is_glossy(lobe_type) ? 8u : 0u) |
-                                  (openpbr_lobe_type_is_specular(lobe_type) ? 16u : 0u));
+        expected.values.push_back(
+            (openpbr_lobe_type_is_reflection(lobe_type) ? 1u : 0u) |
+            (openpbr_lobe_type_is_transmission(lobe_type) ? 2u : 0u) | (openpbr_lobe_type_is_diffuse(lobe_type) ? 4u : 0u) |
+            (openpbr_lobe_type_is_glossy(lobe_type) ? 8u : 0u) | (openpbr_lobe_type_is_specular(lobe_type) ? 16u : 0u));
         expected.names.push_back("flags of lobe type " + std::to_string(lobe_type));
         expected.values.push_back(openpbr_lobe_type_id(lobe_type));
         expected.names.push_back("id of lobe type " + std::to_string(lobe_type));

@@ -105,7 +105,11 @@ TEST(Targets, HlslLibraryKernelMatchesCpu)
     std::vector<std::byte> parameters = to_bytes(std::vector<std::uint32_t>{std::uint32_t(query_count), 0, 0, 0});
     std::vector<std::byte> results(query_count * result_floats * sizeof(float));
     run(pipeline,
-        {{0, &lut, false}, {1, &fuzz, false}, {2, &queries, false}, {3, &materials, false}, {4, &parameters, false},
+        {{0, &lut, false},
+         {1, &fuzz, false},
+         {2, &queries, false},
+         {3, &materials, false},
+         {4, &parameters, false},
          {5, &results, true}},
         std::uint32_t((query_count + 63) / 64));
     expect_matches_cpu(from_bytes<float>(results), "hlsl library kernel");
@@ -186,7 +190,7 @@ TEST(Targets, ExampleShadeBatchMatchesCpu)
             }
             for (int k = 0; k < 3; ++k)
             {
-                worst = std::max(worst, relative_error(gpu[8 + k], cpu[7 + k]));                   // direction
+                worst = std::max(worst, relative_error(gpu[8 + k], cpu[7 + k]));                  // direction
                 worst = std::max(worst, relative_error(gpu[12 + k], cpu[10 + k] + cpu[13 + k]));  // weight
             }
             worst = std::max(worst, relative_error(gpu[11], cpu[16]));  // sample pdf

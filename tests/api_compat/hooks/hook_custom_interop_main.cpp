@@ -34,13 +34,14 @@ int main()
     for (int coarse_off = 0; coarse_off < 2; ++coarse_off)
     {
         // Host build: its own switch word, the coarse toggle. Standard build: the fine toggles.
-        custom_interop_set_enabled_features(coarse_off ? ~(1u << OPENPBR_SPECIALIZATION_ID_EnableSheenAndCoat) : 0xffffffffu);
-        openpbr_runtime_feature_mask =
-            coarse_off ? ~(OPENPBR_FEATURE_BIT_COAT | OPENPBR_FEATURE_BIT_FUZZ) : 0xffffffffu;
+        custom_interop_set_enabled_features(coarse_off ? ~(1u << OPENPBR_SPECIALIZATION_ID_EnableSheenAndCoat)
+                                                       : 0xffffffffu);
+        openpbr_runtime_feature_mask = coarse_off ? ~(OPENPBR_FEATURE_BIT_COAT | OPENPBR_FEATURE_BIT_FUZZ) : 0xffffffffu;
         for (int query = 0; query < 64; ++query)
         {
             const float view[3] = {0.1f * float(query % 7) - 0.3f, 0.05f * float(query % 5), 1.0f};
-            const float u[3] = {float(query) / 64.0f, float((query * 37) % 64) / 64.0f, float((query * 11) % 64) / 64.0f + 0.005f};
+            const float u[3] = {float(query) / 64.0f, float((query * 37) % 64) / 64.0f,
+                                float((query * 11) % 64) / 64.0f + 0.005f};
             float custom[3] = {0.0f, 0.0f, 0.0f};
             const float custom_fuzz = custom_interop_shade(material, view, u, custom);
             const OpenPBR_PreparedBsdf prepared = openpbr_prepare(inputs, glm::vec3(view[0], view[1], view[2]));
@@ -52,8 +53,8 @@ int main()
                 if (bits(custom[index]) != bits(standard[index]))
                 {
                     ++failures;
-                    std::printf("coarse_off %d query %d value %d: host interop %.9g, standard %.9g\n", coarse_off, query, index,
-                                double(custom[index]), double(standard[index]));
+                    std::printf("coarse_off %d query %d value %d: host interop %.9g, standard %.9g\n", coarse_off, query,
+                                index, double(custom[index]), double(standard[index]));
                 }
             }
             if (bits(custom_fuzz) != bits(prepared.probability_fuzz))

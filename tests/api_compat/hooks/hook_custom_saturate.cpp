@@ -26,7 +26,8 @@ inline glm::vec3 saturate(const glm::vec3& v)
 int main()
 {
     using namespace openpbr;
-    const OpenPBR_PreparedBsdf prepared = openpbr_prepare(openpbr_make_default_resolved_inputs(), glm::vec3(0.0f, 0.0f, 1.0f));
+    const OpenPBR_PreparedBsdf prepared =
+        openpbr_prepare(openpbr_make_default_resolved_inputs(), glm::vec3(0.0f, 0.0f, 1.0f));
     // The dielectric specular albedo of prepare goes through openpbr_saturate: with the hook
     // ignored the backend's own saturate would run and the count would stay 0.
     std::printf("host saturate called %d times; probability_specular %g\n", host_saturate_calls,

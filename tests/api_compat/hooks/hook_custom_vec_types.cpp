@@ -42,9 +42,18 @@ struct vec4
 };
 
 template <class V> struct size_of;
-template <> struct size_of<vec2> { static constexpr int value = 2; };
-template <> struct size_of<vec3> { static constexpr int value = 3; };
-template <> struct size_of<vec4> { static constexpr int value = 4; };
+template <> struct size_of<vec2>
+{
+    static constexpr int value = 2;
+};
+template <> struct size_of<vec3>
+{
+    static constexpr int value = 3;
+};
+template <> struct size_of<vec4>
+{
+    static constexpr int value = 4;
+};
 template <class V> using vector_only = decltype(size_of<V>::value);
 
 // Component-wise application of a float function to one, two or three arguments (each a vector
@@ -61,19 +70,19 @@ template <class V, class F, class... A> V componentwise(F f, const A&... a)
     return result;
 }
 
-#define RMATH_BINARY(op)                                                                                             \
-    template <class V, class = vector_only<V>> V operator op(const V& a, const V& b)                              \
-    {                                                                                                                \
-        return componentwise<V>([](float p, float q) { return p op q; }, a, b);                                      \
-    }                                                                                                                \
-    template <class V, class = vector_only<V>> V operator op(const V& a, float b)                                   \
-    {                                                                                                                \
-        return componentwise<V>([](float p, float q) { return p op q; }, a, b);                                      \
-    }                                                                                                                \
-    template <class V, class = vector_only<V>> V operator op(float a, const V& b)                                   \
-    {                                                                                                                \
-        return componentwise<V>([](float p, float q) { return p op q; }, a, b);                                      \
-    }                                                                                                                \
+#define RMATH_BINARY(op)                                                             \
+    template <class V, class = vector_only<V>> V operator op(const V& a, const V& b) \
+    {                                                                                \
+        return componentwise<V>([](float p, float q) { return p op q; }, a, b);      \
+    }                                                                                \
+    template <class V, class = vector_only<V>> V operator op(const V& a, float b)    \
+    {                                                                                \
+        return componentwise<V>([](float p, float q) { return p op q; }, a, b);      \
+    }                                                                                \
+    template <class V, class = vector_only<V>> V operator op(float a, const V& b)    \
+    {                                                                                \
+        return componentwise<V>([](float p, float q) { return p op q; }, a, b);      \
+    }                                                                                \
     template <class V, class B, class = vector_only<V>> V& operator op##=(V& a, const B& b) { return a = a op b; }
 RMATH_BINARY(+)
 RMATH_BINARY(-)
@@ -117,10 +126,10 @@ inline float sign(float x) { return float(x > 0.0f) - float(x < 0.0f); }
 inline float saturate(float x) { return clamp(x, 0.0f, 1.0f); }
 
 // ... and component-wise on vectors.
-#define RMATH_UNARY(name)                                                                                        \
-    template <class V, class = vector_only<V>> V name(const V& v)                                                \
-    {                                                                                                            \
-        return componentwise<V>([](float p) { return rmath::name(p); }, v);                                     \
+#define RMATH_UNARY(name)                                                   \
+    template <class V, class = vector_only<V>> V name(const V& v)           \
+    {                                                                       \
+        return componentwise<V>([](float p) { return rmath::name(p); }, v); \
     }
 RMATH_UNARY(abs)
 RMATH_UNARY(sqrt)

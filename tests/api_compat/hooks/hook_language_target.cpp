@@ -16,13 +16,15 @@
 #define OPENPBR_GET_SPECIALIZATION_CONSTANT(name) true
 #include "interop/openpbr_interop.h"
 
-#if defined(EXPECT_CPP) && (!defined(OPENPBR_LANGUAGE_TARGET_CPP) || defined(OPENPBR_LANGUAGE_TARGET_CUDA) || defined(OPENPBR_LANGUAGE_TARGET_METAL))
+#if defined(EXPECT_CPP) && (!defined(OPENPBR_LANGUAGE_TARGET_CPP) || defined(OPENPBR_LANGUAGE_TARGET_CUDA) || \
+                            defined(OPENPBR_LANGUAGE_TARGET_METAL))
 #error "expected the C++ backend"
 #endif
 #if defined(EXPECT_CUDA) && (!defined(OPENPBR_LANGUAGE_TARGET_CUDA) || defined(OPENPBR_LANGUAGE_TARGET_CPP))
 #error "expected the CUDA backend"
 #endif
-#if defined(EXPECT_METAL) && (!defined(OPENPBR_LANGUAGE_TARGET_METAL) || !defined(OPENPBR_LANGUAGE_TARGET_MSL) || defined(OPENPBR_LANGUAGE_TARGET_CPP))
+#if defined(EXPECT_METAL) && (!defined(OPENPBR_LANGUAGE_TARGET_METAL) || !defined(OPENPBR_LANGUAGE_TARGET_MSL) || \
+                              defined(OPENPBR_LANGUAGE_TARGET_CPP))
 #error "expected the Metal backend (OPENPBR_LANGUAGE_TARGET_MSL and _METAL both set)"
 #endif
 #if defined(EXPECT_GLSL) && (!defined(OPENPBR_LANGUAGE_TARGET_GLSL) || defined(OPENPBR_LANGUAGE_TARGET_CPP))
@@ -31,7 +33,8 @@
 #if defined(EXPECT_SLANG) && (!defined(OPENPBR_LANGUAGE_TARGET_SLANG) || defined(OPENPBR_LANGUAGE_TARGET_CPP))
 #error "expected the Slang backend"
 #endif
-#if !defined(EXPECT_CPP) && !defined(EXPECT_CUDA) && !defined(EXPECT_METAL) && !defined(EXPECT_GLSL) && !defined(EXPECT_SLANG)
+#if !defined(EXPECT_CPP) && !defined(EXPECT_CUDA) && !defined(EXPECT_METAL) && !defined(EXPECT_GLSL) && \
+    !defined(EXPECT_SLANG)
 #error "define one EXPECT_<TARGET>"
 #endif
 

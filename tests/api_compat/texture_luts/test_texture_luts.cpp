@@ -56,13 +56,14 @@ TableLookups array_lookups(float mu, float alpha, float eta, float anisotropy, f
 }
 
 constexpr int kTableCount = 8;
-const char* const kTableNames[kTableCount] = {"ggx_albedo (2D)",  "reflection (3D)",  "transmission (3D)", "interface (3D)",
-                                              "anisotropy (4D)",  "fuzz_ltc_a (2D)",  "fuzz_ltc_b (2D)",   "fuzz_ltc_r (2D)"};
+const char* const kTableNames[kTableCount] = {"ggx_albedo (2D)", "reflection (3D)", "transmission (3D)", "interface (3D)",
+                                              "anisotropy (4D)", "fuzz_ltc_a (2D)", "fuzz_ltc_b (2D)",   "fuzz_ltc_r (2D)"};
 
 float field(const TableLookups& lookups, int table)
 {
-    const float values[kTableCount] = {lookups.ggx_albedo, lookups.reflection,       lookups.transmission, lookups.interface_albedo,
-                                       lookups.anisotropy_ratio, lookups.fuzz_a, lookups.fuzz_b, lookups.fuzz_r};
+    const float values[kTableCount] = {
+        lookups.ggx_albedo,       lookups.reflection, lookups.transmission, lookups.interface_albedo,
+        lookups.anisotropy_ratio, lookups.fuzz_a,     lookups.fuzz_b,       lookups.fuzz_r};
     return values[table];
 }
 
@@ -77,8 +78,7 @@ struct TableErrors
 
 // mu_min: the smallest view cosine drawn, e.g. 0.01 to leave out the first mu cell of the 3D
 // tables (mu < 1/576), where the array mode brackets between the cell's two columns.
-template <class Lookup>
-TableErrors measure(Lookup lookup, int subtexel_bits, int count, float mu_min = 1e-4f)
+template <class Lookup> TableErrors measure(Lookup lookup, int subtexel_bits, int count, float mu_min = 1e-4f)
 {
     texture_luts_host::subtexel_bits = subtexel_bits;
     texture_luts_host::fetch_count = 0;
@@ -90,7 +90,8 @@ TableErrors measure(Lookup lookup, int subtexel_bits, int count, float mu_min = 
         const float alpha = random.unit_with_ends();
         // eta over the tables' [1/3, 3], with eta = 1 (the node between the two sides) often.
         const float pick = random.next();
-        const float eta = pick < 0.1f ? 1.0f : (pick < 0.55f ? 1.0f + 2.0f * random.next() : 1.0f / (1.0f + 2.0f * random.next()));
+        const float eta =
+            pick < 0.1f ? 1.0f : (pick < 0.55f ? 1.0f + 2.0f * random.next() : 1.0f / (1.0f + 2.0f * random.next()));
         const float anisotropy = random.unit_with_ends();
         const float cos_phi_squared = random.unit_with_ends();
         const float fuzz_roughness = random.unit_with_ends();

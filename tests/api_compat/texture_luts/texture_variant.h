@@ -36,8 +36,7 @@ struct MaterialParameters
 };
 
 // Sets the fields MaterialParameters covers on any build's OpenPBR_ResolvedInputs.
-template <class Inputs>
-void apply_parameters(Inputs& inputs, const MaterialParameters& parameters)
+template <class Inputs> void apply_parameters(Inputs& inputs, const MaterialParameters& parameters)
 {
     inputs.base_color = parameters.base_color;
     inputs.base_metalness = parameters.metalness;
@@ -53,10 +52,10 @@ void apply_parameters(Inputs& inputs, const MaterialParameters& parameters)
 
 // One namespace per build: texture_exact (eta interpolated by the library from slice fetches)
 // and texture_trilinear (OPENPBR_LUT_TEXTURE_TRILINEAR_ETA=1).
-#define OPENPBR_TEXTURE_VARIANT_INTERFACE(variant)                                                                   \
-    namespace variant {                                                                                              \
+#define OPENPBR_TEXTURE_VARIANT_INTERFACE(variant)                                                                         \
+    namespace variant {                                                                                                    \
     TableLookups lookups(float mu, float alpha, float eta, float anisotropy, float cos_phi_squared, float fuzz_roughness); \
-    glm::vec3 eval(const MaterialParameters& material, glm::vec3 view, glm::vec3 light);                             \
+    glm::vec3 eval(const MaterialParameters& material, glm::vec3 view, glm::vec3 light);                                   \
     }
 OPENPBR_TEXTURE_VARIANT_INTERFACE(texture_exact)
 OPENPBR_TEXTURE_VARIANT_INTERFACE(texture_trilinear)
