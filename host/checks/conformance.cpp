@@ -68,32 +68,6 @@ constexpr int lobe_type_slot = 17;
 constexpr int emission_slot_begin = 18;
 constexpr int emission_slot_end = 21;
 
-const char* slot_name(int slot)
-{
-    static const char* names[] = {"eval.diffuse.r",
-                                  "eval.diffuse.g",
-                                  "eval.diffuse.b",
-                                  "eval.specular.r",
-                                  "eval.specular.g",
-                                  "eval.specular.b",
-                                  "pdf",
-                                  "sample.direction.x",
-                                  "sample.direction.y",
-                                  "sample.direction.z",
-                                  "sample.weight.diffuse.r",
-                                  "sample.weight.diffuse.g",
-                                  "sample.weight.diffuse.b",
-                                  "sample.weight.specular.r",
-                                  "sample.weight.specular.g",
-                                  "sample.weight.specular.b",
-                                  "sample.pdf",
-                                  "sample.lobe_type",
-                                  "emission.r",
-                                  "emission.g",
-                                  "emission.b"};
-    return slot < 21 ? names[slot] : "unused";
-}
-
 // Sign patterns of nudge_directions: the CPU's condition is the largest change over them.
 constexpr int conformance_nudge_patterns = 4;
 
@@ -296,7 +270,7 @@ void compare_pooled(ConformancePathResult& result, const std::vector<float>& que
                 {
                     worst = error;
                     std::ostringstream where;
-                    where << slot_name(slot) << " of query " << query << " (material "
+                    where << conformance_slot_name(slot) << " of query " << query << " (material "
                           << queries[query * OPENPBR_QUERY_FLOATS] << "): gpu " << gpu[slot] << ", cpu " << cpu[slot];
                     result.worst_output = where.str();
                 }
@@ -1080,6 +1054,32 @@ std::string to_text(const ConformanceReport& report)
         text << "    pooled (old metric) worst: " << path.worst_output << "\n";
     }
     return text.str();
+}
+
+const char* conformance_slot_name(int slot)
+{
+    static const char* names[] = {"eval.diffuse.r",
+                                  "eval.diffuse.g",
+                                  "eval.diffuse.b",
+                                  "eval.specular.r",
+                                  "eval.specular.g",
+                                  "eval.specular.b",
+                                  "pdf",
+                                  "sample.direction.x",
+                                  "sample.direction.y",
+                                  "sample.direction.z",
+                                  "sample.weight.diffuse.r",
+                                  "sample.weight.diffuse.g",
+                                  "sample.weight.diffuse.b",
+                                  "sample.weight.specular.r",
+                                  "sample.weight.specular.g",
+                                  "sample.weight.specular.b",
+                                  "sample.pdf",
+                                  "sample.lobe_type",
+                                  "emission.r",
+                                  "emission.g",
+                                  "emission.b"};
+    return slot >= 0 && slot < 21 ? names[slot] : "unused";
 }
 
 }  // namespace openpbr::host

@@ -114,6 +114,10 @@ struct ConformanceReport
     std::vector<ConformancePathResult> paths;
 };
 
+// Name of output slot `slot` of a conformance result (e.g. 3 -> "eval.specular.r"); "unused"
+// past the last slot.
+const char* conformance_slot_name(int slot);
+
 // The GPU paths this build knows (Vulkan, then CUDA), in report order.
 std::vector<std::string> known_conformance_paths();
 

@@ -349,32 +349,6 @@ void fill_query(float* out, const StabilityCase& stability_case, std::size_t cas
 
 // ---- Per-query checks -------------------------------------------------------------------------
 
-const char* slot_name(int slot)
-{
-    static const char* names[] = {"eval.diffuse.r",
-                                  "eval.diffuse.g",
-                                  "eval.diffuse.b",
-                                  "eval.specular.r",
-                                  "eval.specular.g",
-                                  "eval.specular.b",
-                                  "pdf",
-                                  "sample.direction.x",
-                                  "sample.direction.y",
-                                  "sample.direction.z",
-                                  "sample.weight.diffuse.r",
-                                  "sample.weight.diffuse.g",
-                                  "sample.weight.diffuse.b",
-                                  "sample.weight.specular.r",
-                                  "sample.weight.specular.g",
-                                  "sample.weight.specular.b",
-                                  "sample.pdf",
-                                  "sample.lobe_type",
-                                  "emission.r",
-                                  "emission.g",
-                                  "emission.b"};
-    return slot >= 0 && slot < 21 ? names[slot] : "unused";
-}
-
 constexpr int checked_slots = 21;
 constexpr std::size_t max_violation_records = 5;
 
@@ -408,7 +382,7 @@ void accumulate(CaseAccumulator& accumulator, const float* query, const float* r
             ++accumulator.nonfinite;
             if (first_problem.empty())
             {
-                first_problem = std::string("non-finite ") + slot_name(slot);
+                first_problem = std::string("non-finite ") + conformance_slot_name(slot);
             }
         }
         else if (must_be_non_negative(slot) && value < 0.0f)
@@ -416,7 +390,7 @@ void accumulate(CaseAccumulator& accumulator, const float* query, const float* r
             ++accumulator.negative;
             if (first_problem.empty())
             {
-                first_problem = std::string("negative ") + slot_name(slot);
+                first_problem = std::string("negative ") + conformance_slot_name(slot);
             }
         }
     }
