@@ -292,7 +292,8 @@ OPENPBR_FUNC void openpbr_translucent_shadow_weight_and_prob(OPENPBR_IN(OpenPBR_
             // crossing transmits 1 - F at the exterior angle (the same as 1 - F at the refracted
             // interior angle, Fresnel's reciprocity), so it never meets total internal reflection.
             const float compensation_undone =
-                lobe.is_delta ? 1.0f : max(openpbr_dielectric_interface_albedo(mu, table_alpha, lobe.eta.y), 0.05f);
+                lobe.is_delta ? 1.0f
+                              : openpbr_dielectric_compensation_albedo(mu, table_alpha, lobe.eta.y, lobe.lambda_view, true);
             straight += lobe.transmission_weight *
                         (compensation_undone * (1.0f - openpbr_fresnel_dielectric(mu, 1.0f / lobe.eta.y)));
         }
@@ -300,7 +301,8 @@ OPENPBR_FUNC void openpbr_translucent_shadow_weight_and_prob(OPENPBR_IN(OpenPBR_
         {
             // Entering: the lobe's weight is (1 - E_R) x tint x 1 / E_T0 (openpbr_prepare_lobes_of).
             const float compensation_undone =
-                lobe.is_delta ? 1.0f : openpbr_entering_transmission_albedo(mu, table_alpha, lobe.eta.y, lobe.lambda_view);
+                lobe.is_delta ? 1.0f
+                              : openpbr_dielectric_compensation_albedo(mu, table_alpha, lobe.eta.y, lobe.lambda_view, false);
             straight += lobe.transmission_weight * compensation_undone * prepared.under_coat_transmitted;
         }
         straight_probability += prepared.probability_transmission;

@@ -311,7 +311,6 @@ const std::vector<FurnaceKnownLimit>& furnace_known_limits()
         {"sweep_glass_eta0p67_r0p05_inside", 0.02f, 0.970, 1.012},   // measured 1.0088 +- 0.0003
         {"sweep_glass_eta0p75_r0p05_inside", 0.02f, 0.970, 1.011},   // measured 1.0080 +- 0.0002
         {"sweep_glass_eta0p9_r0p05_inside", 0.02f, 0.970, 1.010},    // measured 1.0065 +- 0.0003
-        {"sweep_glass_eta1_r0p05_inside", 0.02f, 0.970, 1.008},      // measured 1.0052 +- 0.0000
         {"sweep_glass_eta1p001_r0p05_inside", 0.02f, 0.970, 1.011},  // measured 1.0071 +- 0.0003
         {"sweep_glass_eta1p01_r0p05", 0.02f, 0.970, 1.010},          // measured 1.0063 +- 0.0004
         {"sweep_glass_eta1p05_r0p05", 0.02f, 0.970, 1.012},          // measured 1.0080 +- 0.0003

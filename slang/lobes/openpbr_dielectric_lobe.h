@@ -251,16 +251,21 @@ OPENPBR_FUNC OpenPBR_LobeSample openpbr_dielectric_lobe_sample(OPENPBR_IN(OpenPB
     return lobe_sample;
 }
 
-// E_T0 that compensates the entering refraction, floored at OPENPBR_MIN_TRANSMISSION_ALBEDO.
-// At relative IOR exactly 1 the refraction is the delta pass-through of weight
-// G2 / G1 = (1 + Lambda) / (1 + 2 Lambda) (lambda_view: Smith Lambda of the view), which is
-// then E_T0 exactly: the table's one-sided nodes at 1 -/+ 2^-20 interpolate to within 5e-5 of
-// it but not exactly (a mean weight of 1.00503 at roughness 0.05, view cos 0.02).
-OPENPBR_FUNC float openpbr_entering_transmission_albedo(float mu, float table_alpha, float eta, float lambda_view)
+// The albedo that compensates a rough dielectric interface: E_T0 for the refraction entering
+// from outside (floored at OPENPBR_MIN_TRANSMISSION_ALBEDO), E_RT for the interface seen from
+// inside (floored at 0.05). At relative IOR exactly 1 either is the delta pass-through of weight
+// G2 / G1 = (1 + Lambda) / (1 + 2 Lambda) (lambda_view: Smith Lambda of the view; Fresnel is 0),
+// which is then the albedo exactly: the tables' one-sided nodes at 1 -/+ 2^-20 interpolate to
+// within 5e-5 of it but not exactly (a mean weight of 1.0052 at roughness 0.05, view cos 0.02).
+OPENPBR_FUNC float openpbr_dielectric_compensation_albedo(float mu, float table_alpha, float eta, float lambda_view,
+                                                          bool from_inside)
 {
-    const float albedo = eta == 1.0f ? (1.0f + lambda_view) / (1.0f + 2.0f * lambda_view)
-                                     : openpbr_dielectric_transmission_albedo(mu, table_alpha, eta);
-    return max(albedo, OPENPBR_MIN_TRANSMISSION_ALBEDO);
+    if (eta == 1.0f)
+    {
+        return (1.0f + lambda_view) / (1.0f + 2.0f * lambda_view);
+    }
+    return from_inside ? max(openpbr_dielectric_interface_albedo(mu, table_alpha, eta), 0.05f)
+                       : max(openpbr_dielectric_transmission_albedo(mu, table_alpha, eta), OPENPBR_MIN_TRANSMISSION_ALBEDO);
 }
 
 // OpenPBR 1.1 "Translucent base" and "Subsurface": refraction into the interior, the
@@ -287,9 +292,9 @@ OPENPBR_FUNC OpenPBR_DielectricLobe openpbr_transmission_lobe_prepare(OPENPBR_IN
     // A delta lobe refracts exactly 1 - F: no compensation (the table near alpha = 0 smears
     // the step at the critical angle when eta < 1 and gained up to 115 % there).
     const float transmission_compensation =
-        openpbr_ggx_is_delta(alpha)
-            ? 1.0f
-            : 1.0f / openpbr_entering_transmission_albedo(mu, table_alpha, eta_channels.y, openpbr_ggx_lambda(view, alpha));
+        openpbr_ggx_is_delta(alpha) ? 1.0f
+                                    : 1.0f / openpbr_dielectric_compensation_albedo(mu, table_alpha, eta_channels.y,
+                                                                                    openpbr_ggx_lambda(view, alpha), false);
     return openpbr_dielectric_lobe_init(vec3(0.0f), transmission_weight * transmission_compensation, alpha, eta_channels,
                                         false, OPENPBR_LOBE_ID_SPECULAR_TRANSMISSION, view);
 }
@@ -305,7 +310,8 @@ OPENPBR_FUNC OpenPBR_DielectricLobe openpbr_interface_lobe_prepare(float layer_w
     const vec3 eta_inside = vec3(1.0f) / eta_channels;
     const float compensation = openpbr_ggx_is_delta(alpha)
                                    ? 1.0f
-                                   : 1.0f / max(openpbr_dielectric_interface_albedo(mu, table_alpha, eta_inside.y), 0.05f);
+                                   : 1.0f / openpbr_dielectric_compensation_albedo(mu, table_alpha, eta_inside.y,
+                                                                                   openpbr_ggx_lambda(view, alpha), true);
     const float weight = layer_weight * compensation;
     return openpbr_dielectric_lobe_init(vec3(weight), exit_factor * weight, alpha, eta_inside, true,
                                         OPENPBR_LOBE_ID_INTERFACE_FROM_INSIDE, view);
