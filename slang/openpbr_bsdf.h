@@ -643,10 +643,22 @@ OPENPBR_FUNC OpenPBR_DiffuseSpecular openpbr_eval(OPENPBR_IN(OpenPBR_PreparedBsd
     vec3 specular = vec3(0.0f);
     if (light.z >= 0.0f)
     {
-        // The dielectric and metal lobes in one evaluation: one D, G2 and film for both.
-        specular = openpbr_microfacet_reflection_lobe_pair_eval(bsdf.specular, bsdf.probability_specular > 0.0f, bsdf.metal,
-                                                                OPENPBR_FEATURE_METAL && bsdf.probability_metal > 0.0f,
-                                                                bsdf.view, light);
+        // The dielectric and metal lobes in one evaluation: one D, G2 and film for both. A lone
+        // dielectric without a film takes the film-free lobe evaluation (no pair bookkeeping).
+        const bool specular_active = bsdf.probability_specular > 0.0f;
+        const bool metal_active = OPENPBR_FEATURE_METAL && bsdf.probability_metal > 0.0f;
+        if (!metal_active && !(OPENPBR_FEATURE_THIN_FILM && bsdf.specular.fresnel.film_weight > 0.0f))
+        {
+            if (specular_active)
+            {
+                specular = openpbr_microfacet_reflection_lobe_eval_with(bsdf.specular, bsdf.view, light, false);
+            }
+        }
+        else
+        {
+            specular = openpbr_microfacet_reflection_lobe_pair_eval(bsdf.specular, specular_active, bsdf.metal,
+                                                                    metal_active, bsdf.view, light);
+        }
         if (bsdf.probability_diffuse > 0.0f)
         {
             diffuse = openpbr_diffuse_lobe_eval(bsdf.diffuse, bsdf.view, light);

@@ -179,7 +179,7 @@ OPENPBR_FUNC vec3 openpbr_fresnel_evaluate(OPENPBR_IN(OpenPBR_Fresnel) fresnel, 
 // The base layer's dielectric and metal Fresnel factors at one microfacet angle (both built by
 // prepare, the first of kind OPENPBR_FRESNEL_DIELECTRIC or _NONE, the second _F82 or _NONE,
 // under the same film): equal to two openpbr_fresnel_evaluate calls, with the film's spectral
-// harmonics computed once for both (openpbr_thin_film_fresnel_bases). An inactive factor
+// harmonics computed once for both (openpbr_thin_film_model_bases). An inactive factor
 // is 0.
 struct OpenPBR_FresnelPair
 {
@@ -209,7 +209,7 @@ OPENPBR_FUNC OpenPBR_FresnelPair openpbr_fresnel_evaluate_base_pair(OPENPBR_IN(O
     // openpbr_fresnel_evaluate. Both factors carry the same film (openpbr_add_thin_film).
     if (OPENPBR_FEATURE_THIN_FILM && (dielectric_filmed || metal_filmed))
     {
-        const OpenPBR_ThinFilmBasePair film = openpbr_thin_film_fresnel_bases(
+        const OpenPBR_ThinFilmBasePair film = openpbr_thin_film_model_bases(
             openpbr_thin_film_inputs(cos_theta, dielectric_filmed ? dielectric.outside_ior : metal.outside_ior,
                                      dielectric_filmed ? dielectric.film_ior : metal.film_ior,
                                      dielectric_filmed ? dielectric.film_thickness_um : metal.film_thickness_um),

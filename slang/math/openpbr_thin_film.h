@@ -709,42 +709,58 @@ OPENPBR_FUNC float openpbr_thin_film_fast_channel(OPENPBR_IN(OpenPBR_ThinFilmSta
     return 0.5f * (openpbr_thin_film_damped_airy(stack.s, phase) + openpbr_thin_film_damped_airy(stack.p, phase));
 }
 
+// The fast model on either base or both (arguments and result as openpbr_thin_film_fresnel_bases).
+OPENPBR_FUNC OpenPBR_ThinFilmBasePair openpbr_thin_film_fast_bases(OPENPBR_IN(OpenPBR_ThinFilmInputs) inputs,
+                                                                   bool with_dielectric, float dielectric_ior,
+                                                                   bool with_conductor, vec3 base_n, vec3 base_k)
+{
+    OpenPBR_ThinFilmBasePair pair;
+    pair.dielectric = vec3(with_dielectric ? 1.0f : 0.0f);
+    pair.conductor = vec3(with_conductor ? 1.0f : 0.0f);
+    if (inputs.cos_o <= 0.0f)
+    {
+        return pair;
+    }
+    const vec3 nu = OPENPBR_THIN_FILM_FAST_NU;
+    const vec3 sigma = OPENPBR_THIN_FILM_FAST_SIGMA;
+    const float n_b = openpbr_clamp_finite(dielectric_ior, OPENPBR_THIN_FILM_MIN_IOR, OPENPBR_THIN_FILM_MAX_IOR);
+    const float base_normal_term = openpbr_thin_film_normal_term(n_b, inputs.n_o, inputs.outside_normal_term);
+    // Total internal reflection at a dielectric base reflects everything (pair.dielectric 1).
+    if (with_dielectric && base_normal_term > 0.0f)
+    {
+        const OpenPBR_ThinFilmStack stack =
+            openpbr_thin_film_stack(inputs.cos_o, inputs.n_o, inputs.n_f, inputs.thickness_um, inputs.film_normal_term,
+                                    vec2(n_b * n_b, 0.0f), vec2(sqrt(base_normal_term), 0.0f));
+        pair.dielectric = openpbr_clamp_finite(vec3(openpbr_thin_film_fast_channel(stack, nu.x, sigma.x),
+                                                    openpbr_thin_film_fast_channel(stack, nu.y, sigma.y),
+                                                    openpbr_thin_film_fast_channel(stack, nu.z, sigma.z)),
+                                               0.0f, 1.0f);
+    }
+    if (with_conductor)
+    {
+        pair.conductor = openpbr_clamp_finite(
+            vec3(openpbr_thin_film_fast_channel(openpbr_thin_film_conductor_stack(inputs, base_n.x, base_k.x), nu.x, sigma.x),
+                 openpbr_thin_film_fast_channel(openpbr_thin_film_conductor_stack(inputs, base_n.y, base_k.y), nu.y, sigma.y),
+                 openpbr_thin_film_fast_channel(openpbr_thin_film_conductor_stack(inputs, base_n.z, base_k.z), nu.z, sigma.z)),
+            0.0f, 1.0f);
+    }
+    return pair;
+}
+
 OPENPBR_FUNC vec3 openpbr_thin_film_fresnel_dielectric_fast(float cos_theta, float eta_outside, float eta_film,
                                                             float eta_base, float thickness_um)
 {
-    const OpenPBR_ThinFilmInputs inputs = openpbr_thin_film_inputs(cos_theta, eta_outside, eta_film, thickness_um);
-    const float n_b = openpbr_clamp_finite(eta_base, OPENPBR_THIN_FILM_MIN_IOR, OPENPBR_THIN_FILM_MAX_IOR);
-    const float base_normal_term = openpbr_thin_film_normal_term(n_b, inputs.n_o, inputs.outside_normal_term);
-    if (base_normal_term <= 0.0f || inputs.cos_o <= 0.0f)
-    {
-        return vec3(1.0f);
-    }
-    const OpenPBR_ThinFilmStack stack =
-        openpbr_thin_film_stack(inputs.cos_o, inputs.n_o, inputs.n_f, inputs.thickness_um, inputs.film_normal_term,
-                                vec2(n_b * n_b, 0.0f), vec2(sqrt(base_normal_term), 0.0f));
-    const vec3 nu = OPENPBR_THIN_FILM_FAST_NU;
-    const vec3 sigma = OPENPBR_THIN_FILM_FAST_SIGMA;
-    return openpbr_clamp_finite(vec3(openpbr_thin_film_fast_channel(stack, nu.x, sigma.x),
-                                     openpbr_thin_film_fast_channel(stack, nu.y, sigma.y),
-                                     openpbr_thin_film_fast_channel(stack, nu.z, sigma.z)),
-                                0.0f, 1.0f);
+    return openpbr_thin_film_fast_bases(openpbr_thin_film_inputs(cos_theta, eta_outside, eta_film, thickness_um), true,
+                                        eta_base, false, vec3(1.0f), vec3(0.0f))
+        .dielectric;
 }
 
 OPENPBR_FUNC vec3 openpbr_thin_film_fresnel_conductor_fast(float cos_theta, float eta_outside, float eta_film, vec3 base_n,
                                                            vec3 base_k, float thickness_um)
 {
-    const OpenPBR_ThinFilmInputs inputs = openpbr_thin_film_inputs(cos_theta, eta_outside, eta_film, thickness_um);
-    if (inputs.cos_o <= 0.0f)
-    {
-        return vec3(1.0f);
-    }
-    const vec3 nu = OPENPBR_THIN_FILM_FAST_NU;
-    const vec3 sigma = OPENPBR_THIN_FILM_FAST_SIGMA;
-    return openpbr_clamp_finite(
-        vec3(openpbr_thin_film_fast_channel(openpbr_thin_film_conductor_stack(inputs, base_n.x, base_k.x), nu.x, sigma.x),
-             openpbr_thin_film_fast_channel(openpbr_thin_film_conductor_stack(inputs, base_n.y, base_k.y), nu.y, sigma.y),
-             openpbr_thin_film_fast_channel(openpbr_thin_film_conductor_stack(inputs, base_n.z, base_k.z), nu.z, sigma.z)),
-        0.0f, 1.0f);
+    return openpbr_thin_film_fast_bases(openpbr_thin_film_inputs(cos_theta, eta_outside, eta_film, thickness_um), false,
+                                        1.0f, true, base_n, base_k)
+        .conductor;
 }
 
 // ---- Model choice ----------------------------------------------------------------------------
@@ -759,19 +775,28 @@ OPENPBR_FUNC vec3 openpbr_thin_film_fresnel_conductor_fast(float cos_theta, floa
 #define OPENPBR_THIN_FILM_MODEL OPENPBR_THIN_FILM_MODEL_FULL
 #endif
 
-// The chosen model on either base (arguments as openpbr_thin_film_fresnel_full): one call site
-// serves dielectric and conductor Fresnel factors.
+// The chosen model on either base or both (arguments and result as
+// openpbr_thin_film_fresnel_bases): every lobe evaluates its film through this, the base
+// pair's evaluation included, so sample, eval and pdf read the same model.
+OPENPBR_FUNC OpenPBR_ThinFilmBasePair openpbr_thin_film_model_bases(OPENPBR_IN(OpenPBR_ThinFilmInputs) inputs,
+                                                                    bool with_dielectric, float dielectric_ior,
+                                                                    bool with_conductor, vec3 base_n, vec3 base_k)
+{
+#if OPENPBR_THIN_FILM_MODEL == OPENPBR_THIN_FILM_MODEL_FAST
+    return openpbr_thin_film_fast_bases(inputs, with_dielectric, dielectric_ior, with_conductor, base_n, base_k);
+#else
+    return openpbr_thin_film_fresnel_bases(inputs, with_dielectric, dielectric_ior, with_conductor, base_n, base_k);
+#endif
+}
+
+// The chosen model on one base (arguments as openpbr_thin_film_fresnel_full).
 OPENPBR_FUNC vec3 openpbr_thin_film_fresnel_model(float cos_theta, float eta_outside, float eta_film, bool conductor,
                                                   float base_ior, vec3 base_n, vec3 base_k, float thickness_um)
 {
-#if OPENPBR_THIN_FILM_MODEL == OPENPBR_THIN_FILM_MODEL_FAST
-    return conductor
-               ? openpbr_thin_film_fresnel_conductor_fast(cos_theta, eta_outside, eta_film, base_n, base_k, thickness_um)
-               : openpbr_thin_film_fresnel_dielectric_fast(cos_theta, eta_outside, eta_film, base_ior, thickness_um);
-#else
-    return openpbr_thin_film_fresnel_full(cos_theta, eta_outside, eta_film, conductor, base_ior, base_n, base_k,
-                                          thickness_um);
-#endif
+    const OpenPBR_ThinFilmBasePair pair =
+        openpbr_thin_film_model_bases(openpbr_thin_film_inputs(cos_theta, eta_outside, eta_film, thickness_um), !conductor,
+                                      base_ior, conductor, base_n, base_k);
+    return conductor ? pair.conductor : pair.dielectric;
 }
 
 // ---- Metal IOR from artist colours ------------------------------------------------------------
