@@ -10,7 +10,9 @@
 //    (low discrepancy, for integration only: its points are not independent, so chi-square
 //    p-values computed from it would be meaningless);
 //  - run_chi_square_test: goodness of fit of sample() against pdf() over the full sphere, with
-//    delta lobes as discrete atoms and "no sample" as one more cell;
+//    delta lobes as discrete atoms and "no sample" as one more cell, on a (cos theta, phi) grid
+//    in the surface frame or, for a lobe narrower than its cells, on a polar grid warped around
+//    the lobe (SamplingTarget::polar_scale);
 //  - check_pdf_integral: integral of pdf() over the sphere against the fraction of valid
 //    non-delta samples;
 //  - check_sample_consistency: weight == eval / pdf and returned pdf == pdf() per sample;
@@ -173,7 +175,7 @@ double sidak_significance(double family_significance, int test_count);
 void gauss_legendre(int order, std::vector<double>& nodes, std::vector<double>& weights);
 
 // ------------------------------------------------------------------------------------------
-// Integration of the pdf over a (cos theta, phi) grid
+// Integration of the pdf over the grid: (cos theta, phi), or (warped polar angle, phi)
 
 struct SphereGridOptions
 {
