@@ -151,8 +151,10 @@ const std::vector<MaterialConfig>& material_configs()
         // make_bsdf_target bins it on the warped polar grid around the lobe (polar_scale).
         // Roughness 0.2 has both regimes of the collapse: at view cos 1 the lobe (4e-4 rad) is
         // narrower than OPENPBR_DELTA_ALPHA_THRESHOLD and refracts as a delta event (its share of
-        // delta samples from dielectric_delta_share: 1 - 3e-5), at view cos 0.5 it is rough and
-        // 1.6e-3 rad wide, the narrowest rough refraction tested.
+        // delta samples from dielectric_delta_share: 1 - 3.2e-5 entering at 0.99, 1 - 6.2e-5
+        // seen from inside at 1.01, where rough Fresnel reflections add to the totally reflecting
+        // microfacets), at view cos 0.5 it is rough and 1.6e-3 rad wide, the narrowest rough
+        // refraction tested.
         {"rough_dielectric_relative_ior",
          [] {
              OpenPBR_ResolvedInputs i = defaults();
