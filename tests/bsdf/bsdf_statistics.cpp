@@ -169,7 +169,20 @@ std::uint64_t seed_from_name(const std::string& name)
 // ------------------------------------------------------------------------------------------
 // Targets
 
-double delta_selection_probability(const OpenPBR_PreparedBsdf& bsdf)
+namespace {
+
+// Share of delta samples of the prepared BSDF's dielectric lobe: below 1 only where its rough
+// microfacets refract as a delta event (see dielectric_delta_share); a smooth lobe's samples
+// are all delta.
+double transmission_delta_share(const OpenPBR_PreparedBsdf& bsdf)
+{
+    const OpenPBR_DielectricLobe& lobe = bsdf.transmission;
+    return bsdf.probability_transmission > 0.0f && lobe.transmission_is_delta && !lobe.is_delta
+               ? dielectric_delta_share(lobe, bsdf.view)
+               : 1.0;
+}
+
+double delta_probability_with(const OpenPBR_PreparedBsdf& bsdf, double transmission_share)
 {
     // Keep in sync with the delta lobes of openpbr_sample: every lobe that can return an
     // OPENPBR_LOBE_TYPE_SPECULAR sample contributes its selection probability.
@@ -179,11 +192,115 @@ double delta_selection_probability(const OpenPBR_PreparedBsdf& bsdf)
     probability += bsdf.specular.is_delta ? bsdf.probability_specular : 0.0f;
     probability += bsdf.metal.is_delta ? bsdf.probability_metal : 0.0f;
     // The dielectric lobe's transmission is a delta also where its refracted lobe collapses
-    // (eta near 1); every sample of it is then delta only where every microfacet transmits
-    // (eta = 1 exactly, the cases that use this), otherwise reflections are mixed in.
-    probability += bsdf.transmission.transmission_is_delta ? bsdf.probability_transmission : 0.0f;
+    // (eta near 1); its rough reflections (Fresnel) and its totally reflecting microfacets
+    // then take the share of its samples that are not delta.
+    if (transmission_share == 1.0)
+    {
+        probability += bsdf.transmission.transmission_is_delta ? bsdf.probability_transmission : 0.0f;
+    }
+    else
+    {
+        probability += bsdf.probability_transmission * transmission_share;
+    }
     probability += bsdf.thin_transmission.is_delta ? bsdf.probability_thin_transmission : 0.0f;
     return probability;
+}
+
+// Pilot of the refracted lobe for the warped grid: mean direction and median angle from it of
+// up to 4096 non-delta refracted samples (at most 65536 draws); false with fewer than 256.
+bool refracted_lobe_axis(const SamplingTarget& target, std::uint32_t lobe_id, std::uint64_t seed, glm::dvec3& axis,
+                         double& median_angle)
+{
+    Pcg32 rng(mix_seed(seed), 0x9170u);
+    std::vector<glm::dvec3> directions;
+    glm::dvec3 sum(0.0);
+    for (int draw = 0; draw < 65536 && directions.size() < 4096; ++draw)
+    {
+        const float u0 = rng.next_float();
+        const float u1 = rng.next_float();
+        const float u2 = rng.next_float();
+        const DirectionSample s = target.sample(glm::vec3(u0, u1, u2));
+        const std::uint32_t wanted = OPENPBR_LOBE_TYPE_TRANSMISSION | OPENPBR_LOBE_TYPE_GLOSSY;
+        if ((s.lobe_type >> OPENPBR_LOBE_ID_SHIFT) == lobe_id && (s.lobe_type & wanted) == wanted && is_finite(s.direction))
+        {
+            directions.push_back(glm::normalize(glm::dvec3(s.direction)));
+            sum += directions.back();
+        }
+    }
+    if (directions.size() < 256 || !(glm::length(sum) > 0.0))
+    {
+        return false;
+    }
+    axis = glm::normalize(sum);
+    std::vector<double> angles;
+    angles.reserve(directions.size());
+    for (const glm::dvec3& d : directions)
+    {
+        angles.push_back(std::atan2(glm::length(glm::cross(d, axis)), glm::dot(d, axis)));
+    }
+    std::nth_element(angles.begin(), angles.begin() + angles.size() / 2, angles.end());
+    median_angle = angles[angles.size() / 2];
+    return median_angle > 0.0;
+}
+
+}  // namespace
+
+double delta_selection_probability(const OpenPBR_PreparedBsdf& bsdf)
+{
+    return delta_probability_with(bsdf, transmission_delta_share(bsdf));
+}
+
+double dielectric_delta_share(const OpenPBR_DielectricLobe& lobe, const glm::vec3& view)
+{
+    if (lobe.is_delta || !lobe.transmission_is_delta || !(view.z > 0.0f))
+    {
+        return 1.0;
+    }
+    // The deficit 1 - share is integrated (it is small: 3e-5 at relative IOR 0.99, roughness
+    // 0.2, view cos 1), so the quadrature's relative error applies to it rather than to 1.
+    const int channels = lobe.dispersive ? 3 : 1;
+    double share = 0.0;
+    for (int channel = 0; channel < channels; ++channel)
+    {
+        const float eta = lobe.eta[channel];
+        if (eta == 1.0f)
+        {
+            share += 1.0;
+            continue;
+        }
+        SamplingTarget deficit;
+        deficit.name = "visible normals not refracting as a delta";
+        deficit.frame = openpbr_make_basis(glm::vec3(0.0f, 0.0f, 1.0f));
+        deficit.polar_scale = std::max(lobe.alpha.x, lobe.alpha.y);
+        const glm::dvec3 o(view);
+        deficit.pdf = [lobe, o, eta](const glm::vec3& h_float) {
+            const glm::dvec3 h(h_float);
+            const double o_dot_h = glm::dot(o, h);
+            if (!(h.z > 0.0) || !(o_dot_h > 0.0))
+            {
+                return 0.0;
+            }
+            const double visible = double(lobe.g1_view) * o_dot_h * double(openpbr_ggx_d(h_float, lobe.alpha)) / o.z;
+            const double f = lobe.with_fresnel ? double(openpbr_fresnel_dielectric(float(o_dot_h), eta)) : 0.0;
+            // Snell's law through h: t = -o / eta + (o.h / eta - cos theta_t) h, none past the
+            // critical angle; a refraction that leaves above the surface is no sample either.
+            const double sin2_t = (1.0 - o_dot_h * o_dot_h) / (double(eta) * eta);
+            bool refracts = sin2_t < 1.0;
+            if (refracts)
+            {
+                const glm::dvec3 t = -o / double(eta) + (o_dot_h / eta - std::sqrt(1.0 - sin2_t)) * h;
+                refracts = t.z < 0.0;
+            }
+            return visible * (refracts ? f : 1.0);
+        };
+        double missing = 0.0;
+        for (const double cell : integrate_pdf_over_grid(deficit, SphereGridOptions()))
+        {
+            missing += cell;
+        }
+        share += 1.0 - missing;
+    }
+    return share / channels;
 }
 
 SamplingTarget make_bsdf_target(const OpenPBR_PreparedBsdf& bsdf, const std::string& name)
@@ -191,7 +308,12 @@ SamplingTarget make_bsdf_target(const OpenPBR_PreparedBsdf& bsdf, const std::str
     SamplingTarget target;
     target.name = name;
     target.frame = bsdf.basis;
-    target.delta_probability = delta_selection_probability(bsdf);
+    const double transmission_share = transmission_delta_share(bsdf);
+    target.delta_probability = delta_probability_with(bsdf, transmission_share);
+    if (transmission_share != 1.0)
+    {
+        target.delta_share[bsdf.transmission.lobe_id] = transmission_share;
+    }
     target.sample = [bsdf](const glm::vec3& u) {
         const OpenPBR_BsdfSample s = openpbr_sample(bsdf, u);
         DirectionSample result;
@@ -203,6 +325,16 @@ SamplingTarget make_bsdf_target(const OpenPBR_PreparedBsdf& bsdf, const std::str
     };
     target.pdf = [bsdf](const glm::vec3& direction) { return static_cast<double>(openpbr_pdf(bsdf, direction)); };
     target.eval = [bsdf](const glm::vec3& direction) { return openpbr_eval(bsdf, direction); };
+    const OpenPBR_DielectricLobe& lobe = bsdf.transmission;
+    glm::dvec3 axis;
+    double median_angle = 0.0;
+    if (bsdf.probability_transmission > 0.0f && !lobe.transmission_is_delta &&
+        openpbr_dielectric_transmission_width(lobe.alpha, lobe.eta, bsdf.view.z) < kNarrowRefractionWidth &&
+        refracted_lobe_axis(target, lobe.lobe_id, seed_from_name(name) ^ 0x70696c6f74ull, axis, median_angle))
+    {
+        target.frame = openpbr_make_basis(glm::vec3(axis));
+        target.polar_scale = median_angle;
+    }
     return target;
 }
 
@@ -413,22 +545,58 @@ glm::vec3 direction_in_basis(const OpenPBR_Basis& basis, double cos_theta, doubl
     return glm::vec3(t * x + b * y + n * z);
 }
 
+namespace {
+
+// The warped polar coordinate of SamplingTarget::polar_scale: theta = scale (exp(s L) - 1),
+// L = log(1 + pi / scale), so s in [0, 1] covers theta in [0, pi];
+// d omega = sin theta dtheta dphi = sin theta L (theta + scale) ds dphi.
+struct PolarWarp
+{
+    double scale;
+    double log_range;
+    explicit PolarWarp(double polar_scale) : scale(polar_scale), log_range(std::log1p(kPi / polar_scale)) {}
+    double theta(double s) const { return std::min(scale * std::expm1(s * log_range), kPi); }
+    double coordinate(double angle) const { return std::log1p(angle / scale) / log_range; }
+    double jacobian(double s) const
+    {
+        const double angle = theta(s);
+        return std::sin(angle) * log_range * (angle + scale);
+    }
+};
+
+glm::vec3 direction_at_polar_angle(const OpenPBR_Basis& basis, double theta, double phi)
+{
+    const double r = std::sin(theta);
+    const glm::dvec3 d = glm::dvec3(basis.tangent) * (r * std::cos(phi)) +
+                         glm::dvec3(basis.bitangent) * (r * std::sin(phi)) + glm::dvec3(basis.normal) * std::cos(theta);
+    return glm::vec3(d);
+}
+
+}  // namespace
+
 int grid_cell_of(const SamplingTarget& target, const SphereGridOptions& grid, const glm::vec3& direction)
 {
     const glm::dvec3 d(direction);
     const double x = glm::dot(d, glm::dvec3(target.frame.tangent));
     const double y = glm::dot(d, glm::dvec3(target.frame.bitangent));
     const double z = glm::dot(d, glm::dvec3(target.frame.normal));
-    const double length = std::sqrt(x * x + y * y + z * z);
-    const double cos_theta = std::clamp(z / length, -1.0, 1.0);
     double phi = std::atan2(y, x);
     if (phi < 0.0)
     {
         phi += kTwoPi;
     }
+    const int i_phi = std::clamp(static_cast<int>(phi / kTwoPi * grid.phi_bins), 0, grid.phi_bins - 1);
+    if (target.polar_scale > 0.0)
+    {
+        // atan2 keeps the angle accurate near the axis, where 1 - cos theta underflows.
+        const double s = PolarWarp(target.polar_scale).coordinate(std::atan2(std::sqrt(x * x + y * y), z));
+        const int i_theta = std::clamp(static_cast<int>(s * grid.cos_theta_bins), 0, grid.cos_theta_bins - 1);
+        return i_theta * grid.phi_bins + i_phi;
+    }
+    const double length = std::sqrt(x * x + y * y + z * z);
+    const double cos_theta = std::clamp(z / length, -1.0, 1.0);
     const int i_theta =
         std::clamp(static_cast<int>((cos_theta + 1.0) * 0.5 * grid.cos_theta_bins), 0, grid.cos_theta_bins - 1);
-    const int i_phi = std::clamp(static_cast<int>(phi / kTwoPi * grid.phi_bins), 0, grid.phi_bins - 1);
     return i_theta * grid.phi_bins + i_phi;
 }
 
@@ -441,22 +609,38 @@ struct CellIntegrator
     std::vector<double> nodes;
     std::vector<double> weights;
 
-    // Fixed-order Gauss-Legendre over [z0, z1] x [p0, p1]; dw = dz dphi.
+    // Fixed-order Gauss-Legendre over [z0, z1] x [p0, p1]: z is cos theta (d omega = dz dphi)
+    // or the warped polar coordinate (d omega = PolarWarp::jacobian dz dphi).
     double gauss(double z0, double z1, double p0, double p1) const
     {
         const double z_mid = 0.5 * (z0 + z1);
         const double z_half = 0.5 * (z1 - z0);
         const double p_mid = 0.5 * (p0 + p1);
         const double p_half = 0.5 * (p1 - p0);
+        const bool warped = target.polar_scale > 0.0;
+        const PolarWarp warp(warped ? target.polar_scale : 1.0);
         double sum = 0.0;
         for (std::size_t i = 0; i < nodes.size(); ++i)
         {
             const double z = z_mid + z_half * nodes[i];
             double row = 0.0;
-            for (std::size_t j = 0; j < nodes.size(); ++j)
+            if (warped)
             {
-                const double phi = p_mid + p_half * nodes[j];
-                row += weights[j] * target.pdf(direction_in_basis(target.frame, z, phi));
+                const double theta = warp.theta(z);
+                for (std::size_t j = 0; j < nodes.size(); ++j)
+                {
+                    const double phi = p_mid + p_half * nodes[j];
+                    row += weights[j] * target.pdf(direction_at_polar_angle(target.frame, theta, phi));
+                }
+                row *= warp.jacobian(z);
+            }
+            else
+            {
+                for (std::size_t j = 0; j < nodes.size(); ++j)
+                {
+                    const double phi = p_mid + p_half * nodes[j];
+                    row += weights[j] * target.pdf(direction_in_basis(target.frame, z, phi));
+                }
             }
             sum += weights[i] * row;
         }
@@ -487,12 +671,15 @@ std::vector<double> integrate_pdf_over_grid(const SamplingTarget& target, const 
     CellIntegrator integrator{target, grid, {}, {}};
     gauss_legendre(grid.quadrature_order, integrator.nodes, integrator.weights);
     std::vector<double> cells(static_cast<std::size_t>(grid.cos_theta_bins * grid.phi_bins), 0.0);
-    const double dz = 2.0 / grid.cos_theta_bins;
+    // z: cos theta over [-1, 1], or the warped polar coordinate over [0, 1].
+    const bool warped = target.polar_scale > 0.0;
+    const double z_begin = warped ? 0.0 : -1.0;
+    const double dz = (warped ? 1.0 : 2.0) / grid.cos_theta_bins;
     const double dphi = kTwoPi / grid.phi_bins;
     parallel_for_index(cells.size(), [&](std::uint64_t index) {
         const int i_theta = static_cast<int>(index) / grid.phi_bins;
         const int i_phi = static_cast<int>(index) % grid.phi_bins;
-        const double z0 = -1.0 + i_theta * dz;
+        const double z0 = z_begin + i_theta * dz;
         const double z1 = i_theta + 1 == grid.cos_theta_bins ? 1.0 : z0 + dz;
         const double p0 = i_phi * dphi;
         const double p1 = (i_phi + 1) * dphi;
@@ -620,11 +807,17 @@ ChiSquareResult run_chi_square_test(const SamplingTarget& target, const ChiSquar
     result.invalid_count = tally.invalid;
     result.nonfinite_count = tally.nonfinite;
     result.delta_probability = target.delta_probability;
+    // Expected fraction of an atom: its reported pdf (the lobe's selection probability) times
+    // the lobe's share of delta samples.
+    const auto expected_fraction = [&](const DeltaAtom& atom) {
+        const auto share = target.delta_share.find(atom.lobe_type >> OPENPBR_LOBE_ID_SHIFT);
+        return atom.reported_pdf_mean * (share == target.delta_share.end() ? 1.0 : share->second);
+    };
     for (const auto& [type, atom] : tally.atoms)
     {
         result.atoms.push_back(atom);
         result.delta_count += atom.count;
-        result.delta_reported_sum += atom.reported_pdf_mean;
+        result.delta_reported_sum += expected_fraction(atom);
         const double spread = atom.reported_pdf_max - atom.reported_pdf_min;
         if (!(spread <= options.delta_pdf_relative_tolerance * atom.reported_pdf_max) || !(atom.reported_pdf_min > 0.0))
         {
@@ -643,7 +836,9 @@ ChiSquareResult run_chi_square_test(const SamplingTarget& target, const ChiSquar
     }
 
     // Cells: the grid, one atom per delta lobe type, and "no sample".
-    const double dz = 2.0 / grid.cos_theta_bins;
+    const bool warped = target.polar_scale > 0.0;
+    const PolarWarp warp(warped ? target.polar_scale : 1.0);
+    const double dz = (warped ? 1.0 : 2.0) / grid.cos_theta_bins;
     const double dphi = 360.0 / grid.phi_bins;
     std::vector<Cell> cells;
     cells.reserve(probabilities.size() + result.atoms.size() + 1);
@@ -654,8 +849,16 @@ ChiSquareResult run_chi_square_test(const SamplingTarget& target, const ChiSquar
         const int i_theta = static_cast<int>(i) / grid.phi_bins;
         const int i_phi = static_cast<int>(i) % grid.phi_bins;
         std::ostringstream label;
-        label << std::setprecision(4) << "cos in [" << -1.0 + i_theta * dz << ", " << -1.0 + (i_theta + 1) * dz
-              << "), phi in [" << i_phi * dphi << ", " << (i_phi + 1) * dphi << ") deg";
+        if (warped)
+        {
+            label << std::setprecision(4) << "angle from the lobe axis in [" << warp.theta(i_theta * dz) << ", "
+                  << warp.theta((i_theta + 1) * dz) << ") rad";
+        }
+        else
+        {
+            label << std::setprecision(4) << "cos in [" << -1.0 + i_theta * dz << ", " << -1.0 + (i_theta + 1) * dz << ")";
+        }
+        label << ", phi in [" << i_phi * dphi << ", " << (i_phi + 1) * dphi << ") deg";
         result.observed[i] = static_cast<double>(tally.cells[i]);
         result.expected[i] = n * probabilities[i];
         cells.push_back({result.observed[i], result.expected[i], label.str()});
@@ -663,7 +866,7 @@ ChiSquareResult run_chi_square_test(const SamplingTarget& target, const ChiSquar
     for (const DeltaAtom& atom : result.atoms)
     {
         cells.push_back(
-            {static_cast<double>(atom.count), n * atom.reported_pdf_mean, "delta " + lobe_type_string(atom.lobe_type)});
+            {static_cast<double>(atom.count), n * expected_fraction(atom), "delta " + lobe_type_string(atom.lobe_type)});
     }
     const double no_sample_probability = std::max(0.0, 1.0 - result.pdf_integral - result.delta_reported_sum);
     cells.push_back({static_cast<double>(tally.invalid + tally.nonfinite), n * no_sample_probability, "no sample"});

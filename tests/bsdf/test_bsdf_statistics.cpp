@@ -144,10 +144,17 @@ const std::vector<MaterialConfig>& material_configs()
          },
          {Side::outside, Side::inside},
          {1.5f, 1.0f / 1.5f}},
-        // The rough dielectric at relative IORs through 1 (index-matched: a delta pass-through),
-        // in air ... 0.99 and 1.01 are not here: their refracted lobes are 2.3e-3 rad wide at
-        // roughness 0.5 (openpbr_dielectric_transmission_width), far below the 5.6 degree cells
-        // of the pdf quadrature, which then integrates 0.198 of a pdf that samples 0.99998.
+        // The rough dielectric at relative IORs through 1 (1: index-matched, a delta pass-through),
+        // in air and in water. Near 1 the refracted lobe is |1 - 1/eta| alpha / (mu^2 + alpha^2)
+        // rad wide (openpbr_dielectric_transmission_width): at 0.99 and 1.01 and roughness 0.5,
+        // 2.4e-3 at view cos 1 to 0.04 at 0.02, below the 0.098 rad cells of the surface grid, so
+        // make_bsdf_target bins it on the warped polar grid around the lobe (polar_scale).
+        // Roughness 0.2 has both regimes of the collapse: at view cos 1 the lobe (4e-4 rad) is
+        // narrower than OPENPBR_DELTA_ALPHA_THRESHOLD and refracts as a delta event (its share of
+        // delta samples from dielectric_delta_share: 1 - 3.2e-5 entering at 0.99, 1 - 6.2e-5
+        // seen from inside at 1.01, where rough Fresnel reflections add to the totally reflecting
+        // microfacets), at view cos 0.5 it is rough and 1.6e-3 rad wide, the narrowest rough
+        // refraction tested.
         {"rough_dielectric_relative_ior",
          [] {
              OpenPBR_ResolvedInputs i = defaults();
@@ -156,7 +163,16 @@ const std::vector<MaterialConfig>& material_configs()
              return i;
          },
          {Side::outside, Side::inside},
-         {0.67f, 1.0f, 1.5f}},
+         {0.67f, 0.99f, 1.0f, 1.01f, 1.5f}},
+        {"rough_dielectric_relative_ior_roughness_0p2",
+         [] {
+             OpenPBR_ResolvedInputs i = defaults();
+             i.transmission_weight = 1.0f;
+             i.specular_roughness = 0.2f;
+             return i;
+         },
+         {Side::outside, Side::inside},
+         {0.67f, 0.99f, 1.0f, 1.01f, 1.5f}},
         // ... and in water: specular_ior = relative IOR x 1.33.
         {"rough_dielectric_relative_ior_in_water",
          [] {
@@ -166,7 +182,7 @@ const std::vector<MaterialConfig>& material_configs()
              return i;
          },
          {Side::outside, Side::inside},
-         {0.67f * 1.33f, 1.33f, 1.5f * 1.33f},
+         {0.67f * 1.33f, 0.99f * 1.33f, 1.33f, 1.01f * 1.33f, 1.5f * 1.33f},
          1.33f},
         {"smooth_glass",
          [] {
@@ -725,6 +741,84 @@ TEST(StatisticsMachinery, ChiSquareRejectsMissingDeltaProbability)
     EXPECT_LT(result.p_value, 1e-12) << result.report;  // the continuous half is over-expected
     EXPECT_LT(result.delta_p_value, 1e-12) << result.report;
     EXPECT_FALSE(result.delta_pdfs_consistent);
+}
+
+// The warped polar grid integrates the pdf of a GGX reflection lobe of alpha 2e-3 (twice the
+// delta threshold, view along the normal) to 1 - alpha^2 / (1 + alpha^2), the visible normals
+// tilted by less than 45 degrees (the others reflect below the horizon), measured to within
+// 2.0e-7 (the pdf's jump at the horizon, which crosses coarse outer cells), held to 5e-7: a
+// quarter of the binomial standard error of the continuous fraction at 1e6 samples (2e-6). The
+// surface grid, whose pole cells are 0.35 rad wide, integrates 0.4255 of it.
+TEST(StatisticsMachinery, WarpedGridIntegratesANarrowLobe)
+{
+    const glm::vec3 view(0.0f, 0.0f, 1.0f);
+    const OpenPBR_MicrofacetReflectionLobe lobe = openpbr_microfacet_reflection_lobe_init(
+        glm::vec3(1.0f), glm::vec2(2e-3f), openpbr_make_dielectric_fresnel(1.5f, glm::vec3(1.0f)),
+        OPENPBR_LOBE_ID_SPECULAR_REFLECTION, 1.0f, view);
+    SamplingTarget target;
+    target.name = "ggx alpha 2e-3";
+    target.frame = openpbr_make_basis(view);
+    target.pdf = [lobe, view](const glm::vec3& d) { return double(openpbr_microfacet_reflection_lobe_pdf(lobe, view, d)); };
+    const auto integral = [](const SamplingTarget& t) {
+        double sum = 0.0;
+        for (const double cell : integrate_pdf_over_grid(t, SphereGridOptions()))
+        {
+            sum += cell;
+        }
+        return sum;
+    };
+    const double surface_grid = integral(target);
+    target.polar_scale = 2e-3;
+    const double warped_grid = integral(target);
+    const double a2 = 2e-3 * 2e-3;
+    EXPECT_NEAR(warped_grid, 1.0 - a2 / (1.0 + a2), 5e-7);
+    EXPECT_LT(surface_grid, 0.9) << "the surface grid resolves the lobe: the test lost its point";
+}
+
+// The share of delta samples of a collapsed refraction (transmission-only form, relative IOR
+// 0.99, alpha 0.04, view along the normal) is the visible-normal mass inside the critical angle:
+// at normal incidence the visible normals are distributed as D(h) cos theta_h, whose GGX mass
+// beyond theta_c is alpha^2 / (alpha^2 + tan^2 theta_c), 3.2486e-5 with sin theta_c = 0.99.
+// The quadrature is 4.3e-7 under it (measured: the integrand jumps at the critical angle), held
+// to 1e-6: a sixth of the binomial standard error of that deficit at 1e6 samples (5.7e-6).
+TEST(StatisticsMachinery, DeltaShareOfACollapsedRefraction)
+{
+    const glm::vec3 view(0.0f, 0.0f, 1.0f);
+    const float alpha = 0.04f;
+    const float eta = 0.99f;
+    const OpenPBR_DielectricLobe lobe =
+        openpbr_dielectric_lobe_init(glm::vec3(1.0f), glm::vec3(1.0f), glm::vec2(alpha), glm::vec3(eta), false,
+                                     OPENPBR_LOBE_ID_SPECULAR_TRANSMISSION, view);
+    ASSERT_TRUE(lobe.transmission_is_delta && !lobe.is_delta);
+    const double tan2_critical = double(eta) * eta / (1.0 - double(eta) * eta);
+    const double a2 = double(alpha) * alpha;
+    EXPECT_NEAR(1.0 - dielectric_delta_share(lobe, view), a2 / (a2 + tan2_critical), 1e-6);
+    const OpenPBR_DielectricLobe matched =
+        openpbr_dielectric_lobe_init(glm::vec3(1.0f), glm::vec3(1.0f), glm::vec2(alpha), glm::vec3(1.0f), true,
+                                     OPENPBR_LOBE_ID_SPECULAR_TRANSMISSION, view);
+    EXPECT_EQ(dielectric_delta_share(matched, view), 1.0);
+}
+
+// At relative IOR 0.99, roughness 0.5, view cos 1 (a refracted lobe 2.4e-3 rad wide), sampling
+// the BSDF against the pdf of a refracted lobe 10% wider (alpha x 1.1: roughness x sqrt(1.1))
+// is rejected on the warped grid: measured chi2 = 12573 for 1025 degrees of freedom (p = 0).
+TEST(StatisticsMachinery, ChiSquareDetectsATenPercentWiderRefractionNearIndexMatching)
+{
+    OpenPBR_ResolvedInputs inputs = defaults();
+    inputs.transmission_weight = 1.0f;
+    inputs.specular_roughness = 0.5f;
+    inputs.specular_ior = 0.99f;
+    const glm::vec3 view(0.0f, 0.0f, 1.0f);
+    const OpenPBR_PreparedBsdf sampled = openpbr_prepare(inputs, view);
+    inputs.specular_roughness = 0.5f * std::sqrt(1.1f);
+    const OpenPBR_PreparedBsdf reported = openpbr_prepare(inputs, view);
+    SamplingTarget target = make_bsdf_target(sampled, "ior 0.99, pdf of a 10% wider refraction");
+    ASSERT_GT(target.polar_scale, 0.0);
+    target.pdf = [reported](const glm::vec3& d) { return double(openpbr_pdf(reported, d)); };
+    ChiSquareOptions options;
+    options.sample_count = 1000000;
+    const ChiSquareResult result = run_chi_square_test(target, options);
+    EXPECT_LT(result.p_value, 1e-6) << result.report;
 }
 
 TEST(StatisticsMachinery, ConsistencyDetectsSmallWeightAndPdfErrors)
