@@ -26,6 +26,7 @@
 #include "host/tables/microsurface.h"
 #include "host/gpu/shipped_tables.h"
 #include "host/gpu/vulkan_runner.h"
+#include "host/support/progress.h"
 #include "host/support/stopwatch.h"
 #include "slang/baselines/openpbr_baseline_ggx.h"
 #include "slang/openpbr.h"
@@ -47,36 +48,6 @@ AccuracyOptions AccuracyOptions::effective() const
 }
 
 namespace {
-
-// ---- Progress -----------------------------------------------------------------------------
-
-class Progress
-{
-  public:
-    Progress(bool enabled, int total) : enabled(enabled), total(total) {}
-    void step(const std::string& what)
-    {
-        ++done;
-        if (!enabled)
-        {
-            return;
-        }
-        const int width = 30;
-        const int filled = total > 0 ? done * width / total : width;
-        std::fprintf(stderr, "\r[%s%s] %3d%% %-48.48s", std::string(filled, '#').c_str(),
-                     std::string(width - filled, ' ').c_str(), total > 0 ? done * 100 / total : 100, what.c_str());
-        if (done >= total)
-        {
-            std::fprintf(stderr, "\n");
-        }
-        std::fflush(stderr);
-    }
-
-  private:
-    bool enabled;
-    int total;
-    int done = 0;
-};
 
 // ---- Grids and workloads ------------------------------------------------------------------
 
@@ -511,8 +482,9 @@ std::vector<AccuracyRow> run_accuracy_study(const AccuracyOptions& requested)
     {
         vulkan_settings += variant.on_vulkan ? 1 : 0;
     }
-    Progress progress(options.progress,
-                      4 + int(variants.size()) + baseline_count + (options.compile ? vulkan_settings + 1 : 0));
+    ProgressReporter progress(
+        std::uint64_t(4 + int(variants.size()) + baseline_count + (options.compile ? vulkan_settings + 1 : 0)),
+        options.progress, "accuracy");
     std::vector<AccuracyRow> rows;
     auto add = [&rows](const std::string& knob, const std::string& setting, const std::string& error_metric, double error,
                        const std::string& time_metric, double time, bool plotted = false) {
@@ -565,7 +537,7 @@ std::vector<AccuracyRow> run_accuracy_study(const AccuracyOptions& requested)
     {
         truth[i] = truth_albedos[i].reflected;
     }
-    progress.step("ground truth (random walk)");
+    progress.begin_step("ground truth (random walk)");
 
     // Tables at 16 and 64 nodes per axis; 16-bit halves of the shipped table.
     const std::vector<float> table_16 = table_with_2d_size(16, options.table_samples, options.cache_directory);
@@ -580,7 +552,7 @@ std::vector<AccuracyRow> run_accuracy_study(const AccuracyOptions& requested)
     }
     accuracy_set_half_table(halves.data());
     accuracy_set_buffer_table(openpbr_lut_data);
-    progress.step("tables at 16 and 64 nodes, 16-bit values");
+    progress.begin_step("tables at 16 and 64 nodes, 16-bit values");
 
     const std::vector<AccuracyMaterial> materials = workload_materials(false);
     const std::vector<AccuracyMaterial> film_materials = workload_materials(true);
@@ -601,7 +573,7 @@ std::vector<AccuracyRow> run_accuracy_study(const AccuracyOptions& requested)
             variant.eval(materials, queries, double_reference.data());
         }
     }
-    progress.step("reference evaluations");
+    progress.begin_step("reference evaluations");
 
     const std::vector<AccuracyMaterial> white_materials = {metal(1.0f, 0.2f), metal(1.0f, 0.5f), metal(1.0f, 0.9f),
                                                            glass(0.2f),       glass(0.5f),       glass(0.9f)};
@@ -626,7 +598,7 @@ std::vector<AccuracyRow> run_accuracy_study(const AccuracyOptions& requested)
             }
         }
     }
-    progress.step("CPU timings");
+    progress.begin_step("CPU timings");
     for (std::size_t v = 0; v < variants.size(); ++v)
     {
         const BsdfVariant& variant = variants[v];
@@ -699,7 +671,7 @@ std::vector<AccuracyRow> run_accuracy_study(const AccuracyOptions& requested)
                 percentile_relative_error(film_values, film_reference), "CPU ns per prepare+eval (thin-film materials)",
                 film_ns);
         }
-        progress.step(knob + ": " + setting);
+        progress.begin_step(knob + ": " + setting);
     }
 
     // Baselines: bare real-time GGX (no compensation), two visibility terms.
@@ -734,7 +706,7 @@ std::vector<AccuracyRow> run_accuracy_study(const AccuracyOptions& requested)
             eval_ns);
         add("baseline", setting, "albedo error vs single-scattering walk (max)",
             albedo_errors(model, single_truth).max_error, "CPU ns per prepare+eval", eval_ns);
-        progress.step("baseline: " + setting);
+        progress.begin_step("baseline: " + setting);
     }
 
     // Split-sum image-based lighting: DFG tables at 4, 16, 64 and 256 samples per texel.
@@ -766,7 +738,7 @@ std::vector<AccuracyRow> run_accuracy_study(const AccuracyOptions& requested)
             lookup_ns);
         add("baseline", setting, "albedo error vs single-scattering walk (max)",
             albedo_errors(model, single_truth).max_error, "CPU ns per DFG look-up", lookup_ns);
-        progress.step("baseline: " + setting);
+        progress.begin_step("baseline: " + setting);
     }
 
     // Per setting that compiles to SPIR-V: the Slang compile time and SPIR-V size of the
@@ -810,7 +782,7 @@ std::vector<AccuracyRow> run_accuracy_study(const AccuracyOptions& requested)
             {
                 std::cerr << "\nopenpbr bench accuracy: the Slang compile of '" << variant.setting << "' failed (node and "
                           << (options.repository_root / "targets/slangc.mjs").string() << " needed); row left out\n";
-                progress.step("slang + lavapipe: " + variant.setting);
+                progress.begin_step("slang + lavapipe: " + variant.setting);
                 continue;
             }
             add(variant.knob, variant.setting, "SPIR-V bytes", result.bytes, "Slang compile ms (wasm, spirv)",
@@ -840,7 +812,7 @@ std::vector<AccuracyRow> run_accuracy_study(const AccuracyOptions& requested)
                         "lavapipe queries/s (thin-film materials)", film_run.queries_per_second);
                 }
             }
-            progress.step("slang + lavapipe: " + variant.setting);
+            progress.begin_step("slang + lavapipe: " + variant.setting);
         }
         // Texture storage with hardware filtering: Vulkan only (a C++ build has no texture
         // unit), compared with the shipped kernel (float32 buffer) on the same device.
@@ -880,8 +852,9 @@ std::vector<AccuracyRow> run_accuracy_study(const AccuracyOptions& requested)
         {
             std::cerr << "\nopenpbr bench accuracy: texture storage rows left out (no Vulkan device or no Slang)\n";
         }
-        progress.step("slang + lavapipe: " + texture_setting);
+        progress.begin_step("slang + lavapipe: " + texture_setting);
     }
+    progress.finish();
     return rows;
 }
 

@@ -1,10 +1,10 @@
 // fuzz_fit.cpp - see fuzz_fit.h for the model, the conventions and the table layout.
 #include "host/tables/fuzz_fit.h"
+#include "host/support/progress.h"
 #include "host/support/random.h"
 
 #include <algorithm>
 #include <array>
-#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -517,29 +517,18 @@ std::vector<float> generate_fuzz_table(const FuzzFitOptions& options, std::vecto
     }
     const std::size_t cells = std::size_t(n) * std::size_t(n);
     std::vector<FuzzCellReport> results(cells);
-    std::atomic<std::size_t> done{0};
-    std::atomic<int> last_decile{0};
+    // Forced on (--progress): a line per 10 % in a log, the bar on a terminal.
+    ProgressReporter progress(cells, options.progress, "fuzz fit");
     // Largest alpha first: those walks are the longest, so the load balances better.
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, cells, 1), [&](const tbb::blocked_range<std::size_t>& range) {
         for (std::size_t k = range.begin(); k != range.end(); ++k)
         {
             const std::size_t cell = cells - 1 - k;
             results[cell] = generate_fuzz_cell(options, int(cell % std::size_t(n)), int(cell / std::size_t(n)));
-            const std::size_t finished = ++done;
-            if (options.progress)
-            {
-                const int decile = int(finished * 10 / cells);
-                int previous = last_decile.load();
-                while (decile > previous && !last_decile.compare_exchange_weak(previous, decile))
-                {
-                }
-                if (decile > previous)
-                {
-                    std::fprintf(stderr, "fuzz fit: %d%%\n", decile * 10);
-                }
-            }
+            progress.advance();
         }
     });
+    progress.finish();
     const std::size_t channel = cells;
     std::vector<float> table(std::size_t(fuzz_ltc_channel_count) * channel, 0.0f);
     for (int mu_index = 0; mu_index < n; ++mu_index)
