@@ -15,6 +15,7 @@
 #endif
 
 #include "host/studies/accuracy_variants.h"
+#include "host/support/directional_albedo.h"
 #include "slang/openpbr.h"
 
 namespace openpbr::host {
@@ -77,11 +78,7 @@ inline AccuracyAlbedo albedo(const AccuracyMaterial& material, float mu, std::ui
     std::uniform_real_distribution<double> uniform(0.0, 1.0);
     const double shift[3] = {uniform(generator), uniform(generator), uniform(generator)};
     const double step[3] = {0.8191725133961645, 0.6710436067037893, 0.5497004779019703};
-    double sum[3] = {0.0, 0.0, 0.0};
-    double luminance_sum = 0.0;
-    double luminance_squares = 0.0;
-    for (std::uint32_t s = 0; s < samples; ++s)
-    {
+    const DirectionalAlbedo estimate = estimate_directional_albedo(samples, [&](const std::uint64_t s) {
         Vector3 u;
         for (int k = 0; k < 3; ++k)
         {
@@ -89,22 +86,14 @@ inline AccuracyAlbedo albedo(const AccuracyMaterial& material, float mu, std::ui
             u[k] = float(value - std::floor(value));
         }
         const OpenPBR_BsdfSample drawn = openpbr_sample(bsdf, glm::min(u, Vector3(0.99999994f)));
-        const Vector3 weight = drawn.pdf > 0.0f ? drawn.weight.diffuse + drawn.weight.specular : Vector3(0.0f);
-        for (int c = 0; c < 3; ++c)
-        {
-            sum[c] += weight[c];
-        }
-        const double luminance = 0.2126 * double(weight.x) + 0.7152 * double(weight.y) + 0.0722 * double(weight.z);
-        luminance_sum += luminance;
-        luminance_squares += luminance * luminance;
-    }
+        return drawn.pdf > 0.0f ? drawn.weight.diffuse + drawn.weight.specular : Vector3(0.0f);
+    });
     AccuracyAlbedo result;
     for (int c = 0; c < 3; ++c)
     {
-        result.mean[c] = sum[c] / samples;
+        result.mean[c] = estimate.mean[c];
     }
-    const double mean_luminance = luminance_sum / samples;
-    result.variance = std::max(0.0, luminance_squares / samples - mean_luminance * mean_luminance);
+    result.variance = estimate.luminance_variance;
     return result;
 }
 
