@@ -25,6 +25,7 @@
 #include "host/scene/parameter_table.h"
 #include "host/gpu/vulkan_runner.h"
 #include "host/support/random.h"
+#include "host/support/files.h"
 #include "host/support/stopwatch.h"
 #include "slang/openpbr.h"
 
@@ -981,12 +982,7 @@ std::size_t write_fuzz_seed_corpus(const std::vector<StabilityCase>& cases, cons
             input[OPENPBR_FUZZ_WAVELENGTH_OFFSET + 1] = 549.0f;
             input[OPENPBR_FUZZ_WAVELENGTH_OFFSET + 2] = 465.0f;
             const std::string path = directory + "/" + cases[c].name + "_" + std::to_string(l) + ".bin";
-            std::ofstream file(path, std::ios::binary);
-            file.write(reinterpret_cast<const char*>(input), sizeof input);
-            if (!file)
-            {
-                throw std::runtime_error("cannot write '" + path + "'");
-            }
+            write_float32_file(path, std::vector<float>(std::begin(input), std::end(input)));
             ++count;
         }
     }

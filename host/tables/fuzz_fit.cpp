@@ -1,5 +1,6 @@
 // fuzz_fit.cpp - see fuzz_fit.h for the model, the conventions and the table layout.
 #include "host/tables/fuzz_fit.h"
+#include "host/support/files.h"
 #include "host/support/progress.h"
 #include "host/support/random.h"
 
@@ -9,7 +10,6 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
-#include <fstream>
 #include <limits>
 #include <memory>
 #include <random>
@@ -557,41 +557,6 @@ std::vector<float> generate_fuzz_table(const FuzzFitOptions& options, std::vecto
     return table;
 }
 
-namespace {
-
-void write_atomically(const std::filesystem::path& path, const std::string& bytes)
-{
-    const std::filesystem::path temporary = path.string() + ".tmp";
-    {
-        std::ofstream file(temporary, std::ios::binary | std::ios::trunc);
-        if (!file || !file.write(bytes.data(), std::streamsize(bytes.size())) || !file.flush())
-        {
-            throw std::runtime_error("cannot write '" + temporary.string() + "'");
-        }
-    }
-    std::error_code error;
-    std::filesystem::rename(temporary, path, error);
-    if (error)
-    {
-        throw std::runtime_error("cannot rename '" + temporary.string() + "' to '" + path.string() +
-                                 "': " + error.message());
-    }
-}
-
-std::string read_all(const std::filesystem::path& path)
-{
-    std::ifstream file(path, std::ios::binary);
-    if (!file)
-    {
-        throw std::runtime_error("cannot read '" + path.string() + "'");
-    }
-    std::ostringstream stream;
-    stream << file.rdbuf();
-    return stream.str();
-}
-
-}  // namespace
-
 void write_fuzz_values_inc(const std::filesystem::path& path, const std::vector<float>& data, const std::string& comment)
 {
     std::string text;
@@ -610,12 +575,12 @@ void write_fuzz_values_inc(const std::filesystem::path& path, const std::vector<
         std::snprintf(buffer, sizeof(buffer), "%.8ef%s\n", double(data[i]), i + 1 < data.size() ? "," : "");
         text += buffer;
     }
-    write_atomically(path, text);
+    write_file_atomically(path, text);
 }
 
 std::vector<float> read_fuzz_values_inc(const std::filesystem::path& path)
 {
-    std::istringstream lines(read_all(path));
+    std::istringstream lines(read_whole_file(path));
     std::vector<float> values;
     int line_number = 0;
     for (std::string line; std::getline(lines, line);)
@@ -647,22 +612,12 @@ std::vector<float> read_fuzz_values_inc(const std::filesystem::path& path)
 
 std::vector<float> read_fuzz_binary(const std::filesystem::path& path, std::size_t expected_count)
 {
-    const std::string bytes = read_all(path);
+    const std::string bytes = read_whole_file(path);
     if (bytes.size() % 4 != 0 || (expected_count != 0 && bytes.size() != expected_count * 4))
     {
         throw std::runtime_error("'" + path.string() + "': unexpected size " + std::to_string(bytes.size()));
     }
-    std::vector<float> values(bytes.size() / 4);
-    for (std::size_t i = 0; i < values.size(); ++i)
-    {
-        std::uint32_t bits = 0;
-        for (int k = 0; k < 4; ++k)
-        {
-            bits |= std::uint32_t(static_cast<unsigned char>(bytes[i * 4 + std::size_t(k)])) << (8 * k);
-        }
-        std::memcpy(&values[i], &bits, 4);
-    }
-    return values;
+    return floats_from_float32_little_endian(bytes, path);
 }
 
 }  // namespace openpbr::host

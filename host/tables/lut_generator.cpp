@@ -13,6 +13,7 @@
 #endif
 
 #include "host/tables/lut_generator.h"
+#include "host/support/files.h"
 #include "host/support/progress.h"
 #include "host/support/random.h"
 
@@ -28,10 +29,8 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <fstream>
 #include <limits>
 #include <sstream>
-#include <system_error>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -144,67 +143,6 @@ float sample_weight(const CellSetup& cell, const vec3 h)
 }
 
 // ---- Files ---------------------------------------------------------------------------------
-
-bool host_is_little_endian()
-{
-    const std::uint32_t probe = 1;
-    unsigned char first = 0;
-    std::memcpy(&first, &probe, 1);
-    return first == 1;
-}
-
-std::uint32_t byte_swap(const std::uint32_t v)
-{
-    return (v >> 24) | ((v >> 8) & 0x0000FF00u) | ((v << 8) & 0x00FF0000u) | (v << 24);
-}
-
-// Writes `contents` to a temporary file next to `path`, then renames it over `path`.
-void write_file_atomically(const std::filesystem::path& path, const std::string& contents)
-{
-    std::filesystem::path temporary = path;
-    temporary += ".tmp";
-    {
-        std::ofstream file(temporary, std::ios::binary | std::ios::trunc);
-        if (!file)
-        {
-            throw std::runtime_error("lut_generator: cannot open " + temporary.string() +
-                                     " for writing: " + std::strerror(errno));
-        }
-        file.write(contents.data(), std::streamsize(contents.size()));
-        file.close();
-        if (!file)
-        {
-            std::error_code ignored;
-            std::filesystem::remove(temporary, ignored);
-            throw std::runtime_error("lut_generator: cannot write " + temporary.string());
-        }
-    }
-    std::error_code error;
-    std::filesystem::rename(temporary, path, error);
-    if (error)
-    {
-        std::error_code ignored;
-        std::filesystem::remove(temporary, ignored);
-        throw std::runtime_error("lut_generator: cannot rename " + temporary.string() + " to " + path.string() + ": " +
-                                 error.message());
-    }
-}
-
-std::string read_whole_file(const std::filesystem::path& path)
-{
-    std::ifstream file(path, std::ios::binary);
-    if (!file)
-    {
-        throw std::runtime_error("lut_generator: cannot open " + path.string() + ": " + std::strerror(errno));
-    }
-    std::ostringstream contents;
-    contents << file.rdbuf();
-    if (file.bad())
-    {
-        throw std::runtime_error("lut_generator: cannot read " + path.string());
-    }
-    return contents.str();
-}
 
 void check_finite(const std::vector<float>& data, const std::filesystem::path& path)
 {
@@ -739,19 +677,7 @@ std::vector<float> read_lut_values_inc(const std::filesystem::path& path)
 void write_lut_binary(const std::filesystem::path& path, const std::vector<float>& data)
 {
     check_finite(data, path);
-    std::string bytes(data.size() * sizeof(float), '\0');
-    const bool swap = !host_is_little_endian();
-    for (std::size_t i = 0; i < data.size(); ++i)
-    {
-        std::uint32_t bits = 0;
-        std::memcpy(&bits, &data[i], sizeof(bits));
-        if (swap)
-        {
-            bits = byte_swap(bits);
-        }
-        std::memcpy(&bytes[i * sizeof(bits)], &bits, sizeof(bits));
-    }
-    write_file_atomically(path, bytes);
+    write_float32_file(path, data);
 }
 
 std::vector<float> read_lut_binary(const std::filesystem::path& path, const std::size_t expected_count)
@@ -769,19 +695,7 @@ std::vector<float> read_lut_binary(const std::filesystem::path& path, const std:
                                  " values, expected " + std::to_string(expected_count) + " (" +
                                  std::to_string(expected_count * sizeof(float)) + " bytes)");
     }
-    std::vector<float> data(count);
-    const bool swap = !host_is_little_endian();
-    for (std::size_t i = 0; i < count; ++i)
-    {
-        std::uint32_t bits = 0;
-        std::memcpy(&bits, &bytes[i * sizeof(bits)], sizeof(bits));
-        if (swap)
-        {
-            bits = byte_swap(bits);
-        }
-        std::memcpy(&data[i], &bits, sizeof(bits));
-    }
-    return data;
+    return floats_from_float32_little_endian(bytes, path);
 }
 
 double max_abs_difference(const std::vector<float>& a, const std::vector<float>& b, const int table, const LutLayout& layout)
