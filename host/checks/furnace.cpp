@@ -378,7 +378,10 @@ FurnaceEstimate estimate_furnace_albedo(const OpenPBR_ResolvedInputs& inputs, co
         const OpenPBR_BsdfSample s = openpbr_sample(bsdf, u);
         return s.pdf > 0.0f ? s.weight.diffuse + s.weight.specular : vec3(0.0f);
     };
-    const SampleWeightSums total = tbb::parallel_reduce(
+    // The deterministic reduction splits the range the same way on every run (chunks of at most
+    // 4096 samples, summed in one fixed tree), so one seed gives the same bits whatever the
+    // thread count and scheduling.
+    const SampleWeightSums total = tbb::parallel_deterministic_reduce(
         tbb::blocked_range<std::uint64_t>(0, samples, 4096), SampleWeightSums(),
         [&](const tbb::blocked_range<std::uint64_t>& range, SampleWeightSums sums) {
             accumulate_sample_weights(sums, range.begin(), range.end(), draw);
