@@ -38,7 +38,7 @@
 
 OPENPBR_NAMESPACE_BEGIN
 
-#define OPENPBR_UNPACK_VEC3(name)                                                                              \
+#define OPENPBR_UNPACK_VEC3(name)                                                                                       \
     material.name = vec3(OPENPBR_UNPACK_LOAD(index), OPENPBR_UNPACK_LOAD(index + 1u), OPENPBR_UNPACK_LOAD(index + 2u)); \
     index += 3u;
 #define OPENPBR_UNPACK_FLOAT(name, default_value, low, high) \

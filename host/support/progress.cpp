@@ -106,8 +106,7 @@ void ProgressReporter::report(const std::uint64_t done, const bool force)
     const double elapsed = stopwatch_.seconds();
     if (terminal_)
     {
-        if (force || last_print_seconds_ < 0.0 || elapsed - last_print_seconds_ >= terminal_redraw_seconds ||
-            done >= total_)
+        if (force || last_print_seconds_ < 0.0 || elapsed - last_print_seconds_ >= terminal_redraw_seconds || done >= total_)
         {
             last_print_seconds_ = elapsed;
             print(done, elapsed);

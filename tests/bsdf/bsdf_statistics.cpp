@@ -940,10 +940,11 @@ AlbedoEstimate estimate_albedo(const SamplingTarget& target, std::uint64_t sampl
         const ChunkPlan plan = plan_chunks(sample_count);
         std::vector<openpbr::host::SampleWeightSums> partial(plan.chunks);
         parallel_for_index(plan.chunks, [&](std::uint64_t chunk) {
-            for_each_independent_sample(seed, chunk, plan.begin(chunk), plan.end(chunk), [&](std::uint64_t, const glm::vec3& u) {
-                const glm::dvec3 w = weight_of(u);
-                partial[chunk].add(w.x, w.y, w.z);
-            });
+            for_each_independent_sample(seed, chunk, plan.begin(chunk), plan.end(chunk),
+                                        [&](std::uint64_t, const glm::vec3& u) {
+                                            const glm::dvec3 w = weight_of(u);
+                                            partial[chunk].add(w.x, w.y, w.z);
+                                        });
         });
         openpbr::host::SampleWeightSums total;
         for (const openpbr::host::SampleWeightSums& s : partial)
