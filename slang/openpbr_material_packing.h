@@ -26,15 +26,15 @@
 // openpbr_render_unpack_material) and OPENPBR_MATERIAL_UNPACK_READ(index) -> float, then include
 // this header at namespace scope. It defines that function once and undefines both macros.
 #if defined(OPENPBR_MATERIAL_UNPACK_NAME) && defined(OPENPBR_MATERIAL_UNPACK_READ)
-#define OPENPBR_UNPACK_FUNCTION OPENPBR_MATERIAL_UNPACK_NAME
+#define OPENPBR_UNPACK_NAMED 1
 #define OPENPBR_UNPACK_LOAD(index) OPENPBR_MATERIAL_UNPACK_READ(index)
 #elif defined(OPENPBR_MATERIAL_READ) && !defined(OPENPBR_MATERIAL_UNPACK_DEFINED)
 #define OPENPBR_MATERIAL_UNPACK_DEFINED
-#define OPENPBR_UNPACK_FUNCTION openpbr_unpack_material
+#define OPENPBR_UNPACK_NAMED 0
 #define OPENPBR_UNPACK_LOAD(index) OPENPBR_MATERIAL_READ(index)
 #endif
 
-#if defined(OPENPBR_UNPACK_FUNCTION)
+#if defined(OPENPBR_UNPACK_NAMED)
 
 OPENPBR_NAMESPACE_BEGIN
 
@@ -54,7 +54,11 @@ OPENPBR_NAMESPACE_BEGIN
 #define OPENPBR_UNPACK_BASIS(name, normal_input, tangent_input) \
     OPENPBR_UNPACK_VEC3(name.tangent) OPENPBR_UNPACK_VEC3(name.bitangent) OPENPBR_UNPACK_VEC3(name.normal)
 
-OPENPBR_FUNC OpenPBR_ResolvedInputs OPENPBR_UNPACK_FUNCTION(uint material_index)
+#if OPENPBR_UNPACK_NAMED
+OPENPBR_FUNC OpenPBR_ResolvedInputs OPENPBR_MATERIAL_UNPACK_NAME(uint material_index)
+#else
+OPENPBR_FUNC OpenPBR_ResolvedInputs openpbr_unpack_material(uint material_index)
+#endif
 {
     OpenPBR_ResolvedInputs material = openpbr_make_default_resolved_inputs();
     uint index = material_index * uint(OPENPBR_PACKED_MATERIAL_FLOATS);
@@ -72,7 +76,7 @@ OPENPBR_FUNC OpenPBR_ResolvedInputs OPENPBR_UNPACK_FUNCTION(uint material_index)
 
 OPENPBR_NAMESPACE_END
 
-#undef OPENPBR_UNPACK_FUNCTION
+#undef OPENPBR_UNPACK_NAMED
 #undef OPENPBR_UNPACK_LOAD
 #undef OPENPBR_MATERIAL_UNPACK_NAME
 #undef OPENPBR_MATERIAL_UNPACK_READ
