@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
-#include <fstream>
 #include <limits>
 #include <map>
 #include <random>
@@ -18,6 +17,7 @@
 #include "host/scene/features.h"
 #include "host/gpu/shipped_tables.h"
 #include "host/gpu/vulkan_runner.h"
+#include "host/support/files.h"
 #include "host/support/stopwatch.h"
 #include "slang/openpbr.h"
 
@@ -816,12 +816,7 @@ ConformanceReport run_conformance(const std::vector<Material>& materials, const 
     }
     if (!options.cpu_dump_path.empty())
     {
-        std::ofstream dump(options.cpu_dump_path, std::ios::binary);
-        dump.write(reinterpret_cast<const char*>(cpu_results.data()), std::streamsize(cpu_results.size() * sizeof(float)));
-        if (!dump)
-        {
-            throw std::runtime_error("cannot write " + options.cpu_dump_path);
-        }
+        write_float32_file(options.cpu_dump_path, cpu_results);
     }
 
     std::vector<std::string> wanted = options.paths.empty() ? all_conformance_paths() : options.paths;

@@ -1,4 +1,5 @@
 #include "host/checks/furnace.h"
+#include "host/support/directional_albedo.h"
 #include "host/support/random.h"
 
 #include <algorithm>
@@ -248,13 +249,6 @@ std::vector<FurnaceConfig> make_configs()
 // Counter-based random numbers (SplitMix64 over seed and index, host/support/random.h): the same
 // numbers whatever the thread partition, so every run of the command is reproducible.
 
-struct Sums
-{
-    double sum[3] = {0.0, 0.0, 0.0};
-    double sum_squares[3] = {0.0, 0.0, 0.0};
-    double max_weight = 0.0;
-};
-
 std::string side_suffix(FurnaceSide side) { return side == FurnaceSide::inside ? "_inside" : ""; }
 
 }  // namespace
@@ -376,49 +370,35 @@ FurnaceEstimate estimate_furnace_albedo(const OpenPBR_ResolvedInputs& inputs, co
 {
     const OpenPBR_PreparedBsdf bsdf = openpbr_prepare(inputs, view_world, OPENPBR_DEFAULT_RGB_WAVELENGTHS_NM, exterior_ior);
     const std::uint64_t stream = splitmix64(seed);
-    const Sums total = tbb::parallel_reduce(
-        tbb::blocked_range<std::uint64_t>(0, samples, 4096), Sums(),
-        [&](const tbb::blocked_range<std::uint64_t>& range, Sums sums) {
-            for (std::uint64_t i = range.begin(); i != range.end(); ++i)
-            {
-                const std::uint64_t key = stream ^ (i * 0xd1b54a32d192ed03ull);
-                const vec3 u(unit_float_from_bits(splitmix64(key)), unit_float_from_bits(splitmix64(key + 1)),
-                             unit_float_from_bits(splitmix64(key + 2)));
-                const OpenPBR_BsdfSample s = openpbr_sample(bsdf, u);
-                if (!(s.pdf > 0.0f))
-                {
-                    continue;
-                }
-                const vec3 weight = s.weight.diffuse + s.weight.specular;
-                for (int channel = 0; channel < 3; ++channel)
-                {
-                    const double w = weight[channel];
-                    sums.sum[channel] += w;
-                    sums.sum_squares[channel] += w * w;
-                    sums.max_weight = std::max(sums.max_weight, w);
-                }
-            }
+    // The weight of sample i: a no-sample (pdf 0) weighs 0.
+    const auto draw = [&](const std::uint64_t i) {
+        const std::uint64_t key = stream ^ (i * 0xd1b54a32d192ed03ull);
+        const vec3 u(unit_float_from_bits(splitmix64(key)), unit_float_from_bits(splitmix64(key + 1)),
+                     unit_float_from_bits(splitmix64(key + 2)));
+        const OpenPBR_BsdfSample s = openpbr_sample(bsdf, u);
+        return s.pdf > 0.0f ? s.weight.diffuse + s.weight.specular : vec3(0.0f);
+    };
+    // The deterministic reduction splits the range the same way on every run (chunks of at most
+    // 4096 samples, summed in one fixed tree), so one seed gives the same bits whatever the
+    // thread count and scheduling.
+    const SampleWeightSums total = tbb::parallel_deterministic_reduce(
+        tbb::blocked_range<std::uint64_t>(0, samples, 4096), SampleWeightSums(),
+        [&](const tbb::blocked_range<std::uint64_t>& range, SampleWeightSums sums) {
+            accumulate_sample_weights(sums, range.begin(), range.end(), draw);
             return sums;
         },
-        [](Sums a, const Sums& b) {
-            for (int channel = 0; channel < 3; ++channel)
-            {
-                a.sum[channel] += b.sum[channel];
-                a.sum_squares[channel] += b.sum_squares[channel];
-            }
-            a.max_weight = std::max(a.max_weight, b.max_weight);
+        [](SampleWeightSums a, const SampleWeightSums& b) {
+            a.merge(b);
             return a;
         });
+    const DirectionalAlbedo albedo = directional_albedo_from_sums(total);
     FurnaceEstimate estimate;
     estimate.samples = samples;
-    estimate.max_weight = total.max_weight;
-    const double n = static_cast<double>(std::max<std::uint64_t>(samples, 1));
+    estimate.max_weight = albedo.max_weight_any_channel();
     for (int channel = 0; channel < 3; ++channel)
     {
-        const double mean = total.sum[channel] / n;
-        const double variance = std::max(total.sum_squares[channel] / n - mean * mean, 0.0);
-        estimate.albedo[channel] = mean;
-        estimate.standard_error[channel] = std::sqrt(variance / std::max(n - 1.0, 1.0));
+        estimate.albedo[channel] = albedo.mean[channel];
+        estimate.standard_error[channel] = albedo.standard_error[channel];
     }
     return estimate;
 }

@@ -105,7 +105,9 @@ struct FurnaceEstimate
 };
 
 // Mean of openpbr_sample weights (diffuse + specular, delta samples included, no sample = 0)
-// from `samples` independent samples (PCG32 streams, TBB-parallel, deterministic per seed).
+// from `samples` independent samples (SplitMix64 counter-based streams, TBB-parallel with a
+// deterministic reduction, so the same seed gives the same bits on every run): the
+// host's one directional-albedo estimator (host/support/directional_albedo.h).
 FurnaceEstimate estimate_furnace_albedo(const OpenPBR_ResolvedInputs& inputs, const vec3& view_world, std::uint64_t samples,
                                         std::uint64_t seed, float exterior_ior = 1.0f);
 

@@ -25,6 +25,7 @@
 #include "host/scene/parameter_table.h"
 #include "host/gpu/vulkan_runner.h"
 #include "host/support/random.h"
+#include "host/support/files.h"
 #include "host/support/stopwatch.h"
 #include "slang/openpbr.h"
 
@@ -373,6 +374,21 @@ void accumulate(CaseAccumulator& accumulator, const float* query, const float* r
                 std::size_t light_count)
 {
     ++accumulator.queries;
+    // The query and its outputs, kept for the report while fewer than max_violation_records are.
+    const auto record_violation = [&](const std::string& what) {
+        if (accumulator.violations.size() >= max_violation_records)
+        {
+            return;
+        }
+        StabilityQueryRecord record;
+        record.query = query_in_case;
+        std::copy(query + 1, query + 4, record.view);
+        std::copy(query + 4, query + 7, record.light);
+        std::copy(query + 7, query + 10, record.u);
+        std::copy(result, result + checked_slots, record.outputs);
+        record.what = what;
+        accumulator.violations.push_back(record);
+    };
     std::string first_problem;
     for (int slot = 0; slot < checked_slots; ++slot)
     {
@@ -394,16 +410,9 @@ void accumulate(CaseAccumulator& accumulator, const float* query, const float* r
             }
         }
     }
-    if (!first_problem.empty() && accumulator.violations.size() < max_violation_records)
+    if (!first_problem.empty())
     {
-        StabilityQueryRecord record;
-        record.query = query_in_case;
-        std::copy(query + 1, query + 4, record.view);
-        std::copy(query + 4, query + 7, record.light);
-        std::copy(query + 7, query + 10, record.u);
-        std::copy(result, result + checked_slots, record.outputs);
-        record.what = first_problem;
-        accumulator.violations.push_back(record);
+        record_violation(first_problem);
     }
     if (query_in_case < light_count)
     {
@@ -426,17 +435,7 @@ void accumulate(CaseAccumulator& accumulator, const float* query, const float* r
     if (!(std::fabs(length - 1.0) <= 1e-3))
     {
         ++accumulator.bad_directions;
-        if (accumulator.violations.size() < max_violation_records)
-        {
-            StabilityQueryRecord record;
-            record.query = query_in_case;
-            std::copy(query + 1, query + 4, record.view);
-            std::copy(query + 4, query + 7, record.light);
-            std::copy(query + 7, query + 10, record.u);
-            std::copy(result, result + checked_slots, record.outputs);
-            record.what = "sample direction of length " + std::to_string(length);
-            accumulator.violations.push_back(record);
-        }
+        record_violation("sample direction of length " + std::to_string(length));
     }
     double weight_max = 0.0;
     for (int c = 0; c < 3; ++c)
@@ -981,12 +980,7 @@ std::size_t write_fuzz_seed_corpus(const std::vector<StabilityCase>& cases, cons
             input[OPENPBR_FUZZ_WAVELENGTH_OFFSET + 1] = 549.0f;
             input[OPENPBR_FUZZ_WAVELENGTH_OFFSET + 2] = 465.0f;
             const std::string path = directory + "/" + cases[c].name + "_" + std::to_string(l) + ".bin";
-            std::ofstream file(path, std::ios::binary);
-            file.write(reinterpret_cast<const char*>(input), sizeof input);
-            if (!file)
-            {
-                throw std::runtime_error("cannot write '" + path + "'");
-            }
+            write_float32_file(path, std::vector<float>(std::begin(input), std::end(input)));
             ++count;
         }
     }

@@ -37,7 +37,8 @@ CLI::App* add_fuzzgen_subcommand(CLI::App& parent, const CommandContext&)
         ->add_option("-o,--output-dir", settings->output_directory,
                      "where openpbr_fuzz_ltc_values.inc goes (the build derives openpbr_fuzz_ltc.bin from it)")
         ->capture_default_str();
-    command->add_flag("--progress", settings->options.progress, "print a progress line per 10 %");
+    command->add_flag("--progress", settings->options.progress,
+                      "print progress on stderr (a line per 10 %, a bar on a terminal)");
     command->callback([settings]() {
         run_command([&]() {
             const std::vector<float> table = generate_fuzz_table(settings->options);

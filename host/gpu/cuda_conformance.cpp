@@ -7,13 +7,13 @@
 #include <cstdlib>
 #include <regex>
 #include <filesystem>
-#include <fstream>
 #include <iterator>
 #include <random>
 #include <sstream>
 #include <stdexcept>
 
 #include "host/gpu/shipped_tables.h"
+#include "host/support/files.h"
 
 // Set by targets/CMakeLists.txt to the program's path when nvcc was found.
 #ifndef OPENPBR_CUDA_CONFORMANCE_PROGRAM
@@ -28,28 +28,18 @@ namespace fs = std::filesystem;
 
 const char* const cuda_path_names[] = {"cuda", "slang-cuda"};
 
-void write_floats(const fs::path& path, const std::vector<float>& values)
-{
-    std::ofstream file(path, std::ios::binary);
-    file.write(reinterpret_cast<const char*>(values.data()), std::streamsize(values.size() * sizeof(float)));
-    if (!file)
-    {
-        throw std::runtime_error("cannot write '" + path.string() + "'");
-    }
-}
-
+// The driver's result file, or false when it is missing or not whole float32 values.
 bool read_floats(const fs::path& path, std::vector<float>& values)
 {
-    std::ifstream file(path, std::ios::binary);
-    if (!file)
+    try
+    {
+        values = read_float32_file(path);
+        return true;
+    }
+    catch (const std::runtime_error&)
     {
         return false;
     }
-    const std::vector<char> bytes((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
-    values.resize(bytes.size() / sizeof(float));
-    std::copy(bytes.begin(), bytes.begin() + std::ptrdiff_t(values.size() * sizeof(float)),
-              reinterpret_cast<char*>(values.data()));
-    return bytes.size() % sizeof(float) == 0;
 }
 
 std::string shell_quote(const std::string& text)
@@ -81,10 +71,10 @@ void write_conformance_inputs(const std::string& directory, const std::vector<fl
                               const std::vector<float>& materials)
 {
     fs::create_directories(directory);
-    write_floats(fs::path(directory) / "queries.f32", queries);
-    write_floats(fs::path(directory) / "materials.f32", materials);
-    write_floats(fs::path(directory) / "lut.f32", shipped_lut());
-    write_floats(fs::path(directory) / "fuzz_ltc.f32", shipped_fuzz_ltc());
+    write_float32_file(fs::path(directory) / "queries.f32", queries);
+    write_float32_file(fs::path(directory) / "materials.f32", materials);
+    write_float32_file(fs::path(directory) / "lut.f32", shipped_lut());
+    write_float32_file(fs::path(directory) / "fuzz_ltc.f32", shipped_fuzz_ltc());
 }
 
 std::string default_cuda_conformance_program()

@@ -3,14 +3,11 @@
 
 #include <algorithm>
 #include <atomic>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <mutex>
 #include <sstream>
 #include <stdexcept>
-
-#include <unistd.h>
 
 #include <tbb/blocked_range2d.h>
 #include <tbb/parallel_for.h>
@@ -19,6 +16,8 @@
 #include "host/scene/material_packing.h"
 #include "host/gpu/shipped_tables.h"
 #include "host/gpu/vulkan_runner.h"
+#include "host/support/progress.h"
+#include "host/support/stopwatch.h"
 #include "slang/openpbr.h"
 
 // The CPU build of the shared kernel body: the macros read the buffers the renderer points
@@ -45,10 +44,6 @@ static_assert(openpbr::host::kRenderMaxObjects == int(OPENPBR_RENDER_MAX_OBJECTS
 namespace openpbr::host {
 
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
 std::mutex render_mutex;
 
@@ -213,60 +208,6 @@ std::vector<float> make_scene(const RenderSettings& settings, const std::vector<
     return scene;
 }
 
-// ---- Progress ----------------------------------------------------------------------------------
-
-class ProgressBar
-{
-  public:
-    ProgressBar(bool enabled, std::string label, std::uint64_t total)
-        : enabled_(enabled), label_(std::move(label)), total_(std::max<std::uint64_t>(total, 1)),
-          terminal_(isatty(fileno(stderr)) != 0), start_(Clock::now())
-    {
-    }
-
-    void update(std::uint64_t done)
-    {
-        if (!enabled_) return;
-        const double elapsed = seconds_since(start_);
-        const double fraction = std::min(1.0, double(done) / double(total_));
-        if (terminal_)
-        {
-            if (done < total_ && elapsed - last_print_ < 0.2) return;
-        }
-        else
-        {
-            // Not a terminal (a log): a line per quarter.
-            const int quarter = int(fraction * 4.0);
-            if (quarter <= last_quarter_ && done < total_) return;
-            last_quarter_ = quarter;
-        }
-        last_print_ = elapsed;
-        constexpr int bar_width = 30;
-        const int filled = int(fraction * bar_width);
-        std::string bar(std::size_t(filled), '#');
-        bar.append(std::size_t(bar_width - filled), '-');
-        char left[32] = "?";
-        if (fraction > 0.0) std::snprintf(left, sizeof left, "%.1f s", elapsed * (1.0 - fraction) / fraction);
-        std::fprintf(stderr, "%s%s [%s] %5.1f %%  %.1f s elapsed, %s left%s", terminal_ ? "\r" : "", label_.c_str(),
-                     bar.c_str(), 100.0 * fraction, elapsed, left, terminal_ ? "   " : "\n");
-        std::fflush(stderr);
-    }
-
-    void finish()
-    {
-        if (enabled_ && terminal_) std::fprintf(stderr, "\n");
-    }
-
-  private:
-    bool enabled_;
-    std::string label_;
-    std::uint64_t total_;
-    bool terminal_;
-    Clock::time_point start_;
-    double last_print_ = -1.0;
-    int last_quarter_ = -1;
-};
-
 // ---- Shared pieces of both backends --------------------------------------------------------
 
 struct PreparedRender
@@ -340,7 +281,7 @@ int automatic_chunk(int samples_per_pixel)
 
 RenderImage render_cpu(const std::vector<RenderCell>& cells, const RenderSettings& settings)
 {
-    const Clock::time_point start = Clock::now();
+    const Stopwatch total_stopwatch;
     PreparedRender prepared = prepare_render(cells, settings);
     std::vector<float> accumulation(prepared.pixel_count * OPENPBR_RENDER_ACCUMULATION_FLOATS, 0.0f);
     const int threads = tbb::this_task_arena::max_concurrency();
@@ -353,13 +294,13 @@ RenderImage render_cpu(const std::vector<RenderCell>& cells, const RenderSetting
 
     const int spp = settings.samples_per_pixel;
     const int chunk = settings.chunk_samples > 0 ? settings.chunk_samples : automatic_chunk(spp);
-    ProgressBar progress(settings.progress, settings.progress_label.empty() ? "cpu" : settings.progress_label,
-                         std::uint64_t(spp));
-    const Clock::time_point render_start = Clock::now();
+    ProgressReporter progress(std::uint64_t(spp), settings.progress,
+                              settings.progress_label.empty() ? "cpu" : settings.progress_label);
+    const Stopwatch render_stopwatch;
     double first_pass = 0.0;
     for (int begin = 0; begin < spp; begin += chunk)
     {
-        const Clock::time_point pass_start = Clock::now();
+        const Stopwatch pass_stopwatch;
         const int end = std::min(spp, begin + chunk);
         prepared.parameters[OPENPBR_RENDER_PARAMETER_SAMPLE_BEGIN] = std::uint32_t(begin);
         prepared.parameters[OPENPBR_RENDER_PARAMETER_SAMPLE_END] = std::uint32_t(end);
@@ -373,15 +314,15 @@ RenderImage render_cpu(const std::vector<RenderCell>& cells, const RenderSetting
                 }
             }
         });
-        if (begin == 0) first_pass = seconds_since(pass_start);
-        progress.update(std::uint64_t(end));
+        if (begin == 0) first_pass = pass_stopwatch.seconds();
+        progress.set_done(std::uint64_t(end));
     }
     progress.finish();
-    const double render_seconds = seconds_since(render_start);
+    const double render_seconds = render_stopwatch.seconds();
     render_kernel::accumulation = nullptr;
 
     RenderImage image = finish_image(prepared, accumulation, settings);
-    image.seconds = seconds_since(start);
+    image.seconds = total_stopwatch.seconds();
     image.first_pass_seconds = first_pass;
     image.ns_per_pixel_sample = render_seconds * 1e9 / (double(prepared.pixel_count) * double(spp));
     image.device = std::to_string(threads) + " TBB threads";
@@ -390,7 +331,7 @@ RenderImage render_cpu(const std::vector<RenderCell>& cells, const RenderSetting
 
 RenderImage render_vulkan(const std::vector<RenderCell>& cells, const RenderSettings& settings)
 {
-    const Clock::time_point start = Clock::now();
+    const Stopwatch total_stopwatch;
     PreparedRender prepared = prepare_render(cells, settings);
     std::string error;
     std::optional<VulkanContext> context = VulkanContext::create(VulkanOptions{}, &error);
@@ -413,9 +354,9 @@ RenderImage render_vulkan(const std::vector<RenderCell>& cells, const RenderSett
     const std::uint32_t groups_y = std::uint32_t((prepared.layout.height + 7) / 8);
 
     const int spp = settings.samples_per_pixel;
-    ProgressBar progress(settings.progress, settings.progress_label.empty() ? "vulkan" : settings.progress_label,
-                         std::uint64_t(spp));
-    const Clock::time_point render_start = Clock::now();
+    ProgressReporter progress(std::uint64_t(spp), settings.progress,
+                              settings.progress_label.empty() ? "vulkan" : settings.progress_label);
+    const Stopwatch render_stopwatch;
     double first_pass = 0.0;
     double steady_seconds = 0.0;
     int steady_samples = 0;
@@ -429,9 +370,9 @@ RenderImage render_vulkan(const std::vector<RenderCell>& cells, const RenderSett
         const std::vector<BufferBinding> buffers = {{0, &lut_bytes, false},       {1, &fuzz_bytes, false},
                                                     {2, &parameter_bytes, false}, {3, &scene_bytes, false},
                                                     {4, &material_bytes, false},  {5, &accumulation_bytes, true}};
-        const Clock::time_point pass_start = Clock::now();
+        const Stopwatch pass_stopwatch;
         run(pipeline, buffers, groups_x, groups_y, 1, 1);
-        const double pass_seconds = seconds_since(pass_start);
+        const double pass_seconds = pass_stopwatch.seconds();
         if (begin == 0)
         {
             first_pass = pass_seconds;
@@ -441,7 +382,7 @@ RenderImage render_vulkan(const std::vector<RenderCell>& cells, const RenderSett
             steady_seconds += pass_seconds;
             steady_samples += end - begin;
         }
-        progress.update(std::uint64_t(end));
+        progress.set_done(std::uint64_t(end));
         begin = end;
         if (settings.chunk_samples <= 0 && begin > 1)
         {
@@ -455,10 +396,10 @@ RenderImage render_vulkan(const std::vector<RenderCell>& cells, const RenderSett
         }
     }
     progress.finish();
-    const double render_seconds = seconds_since(render_start);
+    const double render_seconds = render_stopwatch.seconds();
 
     RenderImage image = finish_image(prepared, from_bytes<float>(accumulation_bytes), settings);
-    image.seconds = seconds_since(start);
+    image.seconds = total_stopwatch.seconds();
     image.first_pass_seconds = first_pass;
     // Steady state: the passes after the first (lavapipe compiles the shader at the first).
     const double per_sample = steady_samples > 0 ? steady_seconds / steady_samples : render_seconds / spp;

@@ -26,6 +26,8 @@
 #include "host/tables/microsurface.h"
 #include "host/gpu/shipped_tables.h"
 #include "host/gpu/vulkan_runner.h"
+#include "host/support/directional_albedo.h"
+#include "host/support/progress.h"
 #include "host/support/stopwatch.h"
 #include "slang/baselines/openpbr_baseline_ggx.h"
 #include "slang/openpbr.h"
@@ -47,36 +49,6 @@ AccuracyOptions AccuracyOptions::effective() const
 }
 
 namespace {
-
-// ---- Progress -----------------------------------------------------------------------------
-
-class Progress
-{
-  public:
-    Progress(bool enabled, int total) : enabled(enabled), total(total) {}
-    void step(const std::string& what)
-    {
-        ++done;
-        if (!enabled)
-        {
-            return;
-        }
-        const int width = 30;
-        const int filled = total > 0 ? done * width / total : width;
-        std::fprintf(stderr, "\r[%s%s] %3d%% %-48.48s", std::string(filled, '#').c_str(),
-                     std::string(width - filled, ' ').c_str(), total > 0 ? done * 100 / total : 100, what.c_str());
-        if (done >= total)
-        {
-            std::fprintf(stderr, "\n");
-        }
-        std::fflush(stderr);
-    }
-
-  private:
-    bool enabled;
-    int total;
-    int done = 0;
-};
 
 // ---- Grids and workloads ------------------------------------------------------------------
 
@@ -287,28 +259,16 @@ AccuracyAlbedo baseline_albedo(float f0, float roughness, float mu, int visibili
 {
     const glm::vec3 view(std::sqrt(std::max(0.0f, 1.0f - mu * mu)), 0.0f, mu);
     const OpenPBR_BaselineGgx bsdf = openpbr_baseline_ggx_prepare(glm::vec3(f0), 1.0f, roughness, visibility, view);
-    // The point set of the BSDF variants' albedo (host/studies/accuracy_variant_body.h).
-    std::mt19937_64 generator(seed);
-    std::uniform_real_distribution<double> uniform(0.0, 1.0);
-    const double shift[3] = {uniform(generator), uniform(generator), uniform(generator)};
-    const double step[3] = {0.8191725133961645, 0.6710436067037893, 0.5497004779019703};
-    double sum = 0.0;
-    for (std::uint32_t s = 0; s < samples; ++s)
-    {
-        glm::vec3 u;
-        for (int k = 0; k < 3; ++k)
-        {
-            const double value = shift[k] + step[k] * double(s);
-            u[k] = float(value - std::floor(value));
-        }
-        const glm::vec4 drawn = openpbr_baseline_ggx_sample(bsdf, glm::min(u, glm::vec3(0.99999994f)));
-        if (drawn.w > 0.0f)
-        {
-            sum += openpbr_baseline_ggx_eval(bsdf, glm::vec3(drawn)).x / drawn.w;
-        }
-    }
+    // The point set and estimator of the BSDF variants' albedo (host/studies/accuracy_variant_body.h).
+    const ShiftedR3Sequence sequence(seed);
+    const DirectionalAlbedo estimate = estimate_directional_albedo(samples, [&](const std::uint64_t s) {
+        const std::array<float, 3> point = sequence.point(s);
+        const glm::vec4 drawn = openpbr_baseline_ggx_sample(bsdf, glm::vec3(point[0], point[1], point[2]));
+        const float weight = drawn.w > 0.0f ? openpbr_baseline_ggx_eval(bsdf, glm::vec3(drawn)).x / drawn.w : 0.0f;
+        return std::array<float, 3>{weight, weight, weight};
+    });
     AccuracyAlbedo result;
-    result.mean[0] = result.mean[1] = result.mean[2] = sum / samples;
+    result.mean[0] = result.mean[1] = result.mean[2] = estimate.mean[0];
     return result;
 }
 
@@ -511,8 +471,9 @@ std::vector<AccuracyRow> run_accuracy_study(const AccuracyOptions& requested)
     {
         vulkan_settings += variant.on_vulkan ? 1 : 0;
     }
-    Progress progress(options.progress,
-                      4 + int(variants.size()) + baseline_count + (options.compile ? vulkan_settings + 1 : 0));
+    ProgressReporter progress(
+        std::uint64_t(4 + int(variants.size()) + baseline_count + (options.compile ? vulkan_settings + 1 : 0)),
+        options.progress, "accuracy");
     std::vector<AccuracyRow> rows;
     auto add = [&rows](const std::string& knob, const std::string& setting, const std::string& error_metric, double error,
                        const std::string& time_metric, double time, bool plotted = false) {
@@ -565,7 +526,7 @@ std::vector<AccuracyRow> run_accuracy_study(const AccuracyOptions& requested)
     {
         truth[i] = truth_albedos[i].reflected;
     }
-    progress.step("ground truth (random walk)");
+    progress.begin_step("ground truth (random walk)");
 
     // Tables at 16 and 64 nodes per axis; 16-bit halves of the shipped table.
     const std::vector<float> table_16 = table_with_2d_size(16, options.table_samples, options.cache_directory);
@@ -580,7 +541,7 @@ std::vector<AccuracyRow> run_accuracy_study(const AccuracyOptions& requested)
     }
     accuracy_set_half_table(halves.data());
     accuracy_set_buffer_table(openpbr_lut_data);
-    progress.step("tables at 16 and 64 nodes, 16-bit values");
+    progress.begin_step("tables at 16 and 64 nodes, 16-bit values");
 
     const std::vector<AccuracyMaterial> materials = workload_materials(false);
     const std::vector<AccuracyMaterial> film_materials = workload_materials(true);
@@ -601,7 +562,7 @@ std::vector<AccuracyRow> run_accuracy_study(const AccuracyOptions& requested)
             variant.eval(materials, queries, double_reference.data());
         }
     }
-    progress.step("reference evaluations");
+    progress.begin_step("reference evaluations");
 
     const std::vector<AccuracyMaterial> white_materials = {metal(1.0f, 0.2f), metal(1.0f, 0.5f), metal(1.0f, 0.9f),
                                                            glass(0.2f),       glass(0.5f),       glass(0.9f)};
@@ -626,7 +587,7 @@ std::vector<AccuracyRow> run_accuracy_study(const AccuracyOptions& requested)
             }
         }
     }
-    progress.step("CPU timings");
+    progress.begin_step("CPU timings");
     for (std::size_t v = 0; v < variants.size(); ++v)
     {
         const BsdfVariant& variant = variants[v];
@@ -699,8 +660,21 @@ std::vector<AccuracyRow> run_accuracy_study(const AccuracyOptions& requested)
                 percentile_relative_error(film_values, film_reference), "CPU ns per prepare+eval (thin-film materials)",
                 film_ns);
         }
-        progress.step(knob + ": " + setting);
+        progress.begin_step(knob + ": " + setting);
     }
+
+    // A baseline's three albedo-error rows: max (plotted) and mean against the random walk, max
+    // against the single-scattering walk. `sink` (what the timed loop summed) enters the first
+    // row's time times 0, so the compiler cannot drop the loop.
+    const auto add_baseline_albedo_rows = [&](const std::string& setting, const std::vector<double>& model,
+                                              const std::string& time_metric, const double time, const float sink) {
+        const AlbedoErrors errors = albedo_errors(model, truth);
+        add("baseline", setting, "albedo error vs random walk (max)", errors.max_error, time_metric,
+            time + 0.0 * double(sink), true);
+        add("baseline", setting, "albedo error vs random walk (mean)", errors.mean_error, time_metric, time);
+        add("baseline", setting, "albedo error vs single-scattering walk (max)",
+            albedo_errors(model, single_truth).max_error, time_metric, time);
+    };
 
     // Baselines: bare real-time GGX (no compensation), two visibility terms.
     for (const int visibility : {OPENPBR_BASELINE_VISIBILITY_SCHLICK_SMITH, OPENPBR_BASELINE_VISIBILITY_HEIGHT_CORRELATED})
@@ -715,7 +689,6 @@ std::vector<AccuracyRow> run_accuracy_study(const AccuracyOptions& requested)
                                        visibility, options.albedo_samples, 1000 + i)
                            .mean[0];
         }
-        const AlbedoErrors errors = albedo_errors(model, truth);
         float sink = 0.0f;
         const double eval_ns = time_ns_per_query(queries.size(), [&] {
             for (const AccuracyQuery& query : queries)
@@ -728,13 +701,8 @@ std::vector<AccuracyRow> run_accuracy_study(const AccuracyOptions& requested)
                 sink += openpbr_baseline_ggx_eval(bsdf, glm::vec3(query.light[0], query.light[1], query.light[2])).x;
             }
         });
-        add("baseline", setting, "albedo error vs random walk (max)", errors.max_error, "CPU ns per prepare+eval",
-            eval_ns + 0.0 * double(sink), true);
-        add("baseline", setting, "albedo error vs random walk (mean)", errors.mean_error, "CPU ns per prepare+eval",
-            eval_ns);
-        add("baseline", setting, "albedo error vs single-scattering walk (max)",
-            albedo_errors(model, single_truth).max_error, "CPU ns per prepare+eval", eval_ns);
-        progress.step("baseline: " + setting);
+        add_baseline_albedo_rows(setting, model, "CPU ns per prepare+eval", eval_ns, sink);
+        progress.begin_step("baseline: " + setting);
     }
 
     // Split-sum image-based lighting: DFG tables at 4, 16, 64 and 256 samples per texel.
@@ -748,7 +716,6 @@ std::vector<AccuracyRow> run_accuracy_study(const AccuracyOptions& requested)
             const glm::vec2 scale_bias = dfg_lookup(dfg, dfg_size, grid_mu[i], grid_materials[i].specular_roughness);
             model[i] = grid_materials[i].base_color[0] * scale_bias.x + scale_bias.y;
         }
-        const AlbedoErrors errors = albedo_errors(model, truth);
         float sink = 0.0f;
         const double lookup_ns = time_ns_per_query(queries.size(), [&] {
             for (const AccuracyQuery& query : queries)
@@ -760,13 +727,8 @@ std::vector<AccuracyRow> run_accuracy_study(const AccuracyOptions& requested)
         });
         const std::string setting = "split-sum IBL, DFG " + std::to_string(dfg_size) + "x" + std::to_string(dfg_size) +
                                     " at " + std::to_string(samples) + " samples";
-        add("baseline", setting, "albedo error vs random walk (max)", errors.max_error, "CPU ns per DFG look-up",
-            lookup_ns + 0.0 * double(sink), true);
-        add("baseline", setting, "albedo error vs random walk (mean)", errors.mean_error, "CPU ns per DFG look-up",
-            lookup_ns);
-        add("baseline", setting, "albedo error vs single-scattering walk (max)",
-            albedo_errors(model, single_truth).max_error, "CPU ns per DFG look-up", lookup_ns);
-        progress.step("baseline: " + setting);
+        add_baseline_albedo_rows(setting, model, "CPU ns per DFG look-up", lookup_ns, sink);
+        progress.begin_step("baseline: " + setting);
     }
 
     // Per setting that compiles to SPIR-V: the Slang compile time and SPIR-V size of the
@@ -810,7 +772,7 @@ std::vector<AccuracyRow> run_accuracy_study(const AccuracyOptions& requested)
             {
                 std::cerr << "\nopenpbr bench accuracy: the Slang compile of '" << variant.setting << "' failed (node and "
                           << (options.repository_root / "targets/slangc.mjs").string() << " needed); row left out\n";
-                progress.step("slang + lavapipe: " + variant.setting);
+                progress.begin_step("slang + lavapipe: " + variant.setting);
                 continue;
             }
             add(variant.knob, variant.setting, "SPIR-V bytes", result.bytes, "Slang compile ms (wasm, spirv)",
@@ -840,7 +802,7 @@ std::vector<AccuracyRow> run_accuracy_study(const AccuracyOptions& requested)
                         "lavapipe queries/s (thin-film materials)", film_run.queries_per_second);
                 }
             }
-            progress.step("slang + lavapipe: " + variant.setting);
+            progress.begin_step("slang + lavapipe: " + variant.setting);
         }
         // Texture storage with hardware filtering: Vulkan only (a C++ build has no texture
         // unit), compared with the shipped kernel (float32 buffer) on the same device.
@@ -880,8 +842,9 @@ std::vector<AccuracyRow> run_accuracy_study(const AccuracyOptions& requested)
         {
             std::cerr << "\nopenpbr bench accuracy: texture storage rows left out (no Vulkan device or no Slang)\n";
         }
-        progress.step("slang + lavapipe: " + texture_setting);
+        progress.begin_step("slang + lavapipe: " + texture_setting);
     }
+    progress.finish();
     return rows;
 }
 

@@ -5,7 +5,6 @@
 // make_variant_vndf_bounded), then includes this file. No include guard: one inclusion per
 // translation unit by design.
 #include <cmath>
-#include <random>
 
 // A float32 buffer-mode table is a pointer in ::openpbr (slang/openpbr_lut.h), where the array
 // builds already define openpbr_lut_data as an array: this translation unit's pointer gets its
@@ -15,6 +14,7 @@
 #endif
 
 #include "host/studies/accuracy_variants.h"
+#include "host/support/directional_albedo.h"
 #include "slang/openpbr.h"
 
 namespace openpbr::host {
@@ -69,42 +69,20 @@ inline AccuracyAlbedo albedo(const AccuracyMaterial& material, float mu, std::ui
     using namespace ::openpbr::OPENPBR_CPP_VARIANT_NAMESPACE;
     const Vector3 view(std::sqrt(std::max(0.0f, 1.0f - mu * mu)), 0.0f, mu);
     const OpenPBR_PreparedBsdf bsdf = openpbr_prepare(resolve(material), view);
-    // Roberts' R3 sequence (the generalized golden ratio, 1 / phi_3^k) with a random shift
-    // from the seed: a low-discrepancy point set, so the mean converges far faster than with
-    // independent numbers, while the sample variance of the weights is still the per-sample
-    // variance of the estimator (what the sampling knob compares).
-    std::mt19937_64 generator(seed);
-    std::uniform_real_distribution<double> uniform(0.0, 1.0);
-    const double shift[3] = {uniform(generator), uniform(generator), uniform(generator)};
-    const double step[3] = {0.8191725133961645, 0.6710436067037893, 0.5497004779019703};
-    double sum[3] = {0.0, 0.0, 0.0};
-    double luminance_sum = 0.0;
-    double luminance_squares = 0.0;
-    for (std::uint32_t s = 0; s < samples; ++s)
-    {
-        Vector3 u;
-        for (int k = 0; k < 3; ++k)
-        {
-            const double value = shift[k] + step[k] * double(s);
-            u[k] = float(value - std::floor(value));
-        }
-        const OpenPBR_BsdfSample drawn = openpbr_sample(bsdf, glm::min(u, Vector3(0.99999994f)));
-        const Vector3 weight = drawn.pdf > 0.0f ? drawn.weight.diffuse + drawn.weight.specular : Vector3(0.0f);
-        for (int c = 0; c < 3; ++c)
-        {
-            sum[c] += weight[c];
-        }
-        const double luminance = 0.2126 * double(weight.x) + 0.7152 * double(weight.y) + 0.0722 * double(weight.z);
-        luminance_sum += luminance;
-        luminance_squares += luminance * luminance;
-    }
+    // The study's point set (ShiftedR3Sequence): low discrepancy, per-sample variance kept.
+    const ShiftedR3Sequence sequence(seed);
+    const DirectionalAlbedo estimate = estimate_directional_albedo(samples, [&](const std::uint64_t s) {
+        const std::array<float, 3> point = sequence.point(s);
+        const Vector3 u(point[0], point[1], point[2]);
+        const OpenPBR_BsdfSample drawn = openpbr_sample(bsdf, u);
+        return drawn.pdf > 0.0f ? drawn.weight.diffuse + drawn.weight.specular : Vector3(0.0f);
+    });
     AccuracyAlbedo result;
     for (int c = 0; c < 3; ++c)
     {
-        result.mean[c] = sum[c] / samples;
+        result.mean[c] = estimate.mean[c];
     }
-    const double mean_luminance = luminance_sum / samples;
-    result.variance = std::max(0.0, luminance_squares / samples - mean_luminance * mean_luminance);
+    result.variance = estimate.luminance_variance;
     return result;
 }
 

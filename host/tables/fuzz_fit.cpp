@@ -1,15 +1,15 @@
 // fuzz_fit.cpp - see fuzz_fit.h for the model, the conventions and the table layout.
 #include "host/tables/fuzz_fit.h"
+#include "host/support/files.h"
+#include "host/support/progress.h"
 #include "host/support/random.h"
 
 #include <algorithm>
 #include <array>
-#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
-#include <fstream>
 #include <limits>
 #include <memory>
 #include <random>
@@ -517,29 +517,18 @@ std::vector<float> generate_fuzz_table(const FuzzFitOptions& options, std::vecto
     }
     const std::size_t cells = std::size_t(n) * std::size_t(n);
     std::vector<FuzzCellReport> results(cells);
-    std::atomic<std::size_t> done{0};
-    std::atomic<int> last_decile{0};
+    // Forced on (--progress): a line per 10 % in a log, the bar on a terminal.
+    ProgressReporter progress(cells, options.progress, "fuzz fit");
     // Largest alpha first: those walks are the longest, so the load balances better.
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, cells, 1), [&](const tbb::blocked_range<std::size_t>& range) {
         for (std::size_t k = range.begin(); k != range.end(); ++k)
         {
             const std::size_t cell = cells - 1 - k;
             results[cell] = generate_fuzz_cell(options, int(cell % std::size_t(n)), int(cell / std::size_t(n)));
-            const std::size_t finished = ++done;
-            if (options.progress)
-            {
-                const int decile = int(finished * 10 / cells);
-                int previous = last_decile.load();
-                while (decile > previous && !last_decile.compare_exchange_weak(previous, decile))
-                {
-                }
-                if (decile > previous)
-                {
-                    std::fprintf(stderr, "fuzz fit: %d%%\n", decile * 10);
-                }
-            }
+            progress.advance();
         }
     });
+    progress.finish();
     const std::size_t channel = cells;
     std::vector<float> table(std::size_t(fuzz_ltc_channel_count) * channel, 0.0f);
     for (int mu_index = 0; mu_index < n; ++mu_index)
@@ -568,41 +557,6 @@ std::vector<float> generate_fuzz_table(const FuzzFitOptions& options, std::vecto
     return table;
 }
 
-namespace {
-
-void write_atomically(const std::filesystem::path& path, const std::string& bytes)
-{
-    const std::filesystem::path temporary = path.string() + ".tmp";
-    {
-        std::ofstream file(temporary, std::ios::binary | std::ios::trunc);
-        if (!file || !file.write(bytes.data(), std::streamsize(bytes.size())) || !file.flush())
-        {
-            throw std::runtime_error("cannot write '" + temporary.string() + "'");
-        }
-    }
-    std::error_code error;
-    std::filesystem::rename(temporary, path, error);
-    if (error)
-    {
-        throw std::runtime_error("cannot rename '" + temporary.string() + "' to '" + path.string() +
-                                 "': " + error.message());
-    }
-}
-
-std::string read_all(const std::filesystem::path& path)
-{
-    std::ifstream file(path, std::ios::binary);
-    if (!file)
-    {
-        throw std::runtime_error("cannot read '" + path.string() + "'");
-    }
-    std::ostringstream stream;
-    stream << file.rdbuf();
-    return stream.str();
-}
-
-}  // namespace
-
 void write_fuzz_values_inc(const std::filesystem::path& path, const std::vector<float>& data, const std::string& comment)
 {
     std::string text;
@@ -621,12 +575,12 @@ void write_fuzz_values_inc(const std::filesystem::path& path, const std::vector<
         std::snprintf(buffer, sizeof(buffer), "%.8ef%s\n", double(data[i]), i + 1 < data.size() ? "," : "");
         text += buffer;
     }
-    write_atomically(path, text);
+    write_file_atomically(path, text);
 }
 
 std::vector<float> read_fuzz_values_inc(const std::filesystem::path& path)
 {
-    std::istringstream lines(read_all(path));
+    std::istringstream lines(read_whole_file(path));
     std::vector<float> values;
     int line_number = 0;
     for (std::string line; std::getline(lines, line);)
@@ -658,22 +612,12 @@ std::vector<float> read_fuzz_values_inc(const std::filesystem::path& path)
 
 std::vector<float> read_fuzz_binary(const std::filesystem::path& path, std::size_t expected_count)
 {
-    const std::string bytes = read_all(path);
+    const std::string bytes = read_whole_file(path);
     if (bytes.size() % 4 != 0 || (expected_count != 0 && bytes.size() != expected_count * 4))
     {
         throw std::runtime_error("'" + path.string() + "': unexpected size " + std::to_string(bytes.size()));
     }
-    std::vector<float> values(bytes.size() / 4);
-    for (std::size_t i = 0; i < values.size(); ++i)
-    {
-        std::uint32_t bits = 0;
-        for (int k = 0; k < 4; ++k)
-        {
-            bits |= std::uint32_t(static_cast<unsigned char>(bytes[i * 4 + std::size_t(k)])) << (8 * k);
-        }
-        std::memcpy(&values[i], &bits, 4);
-    }
-    return values;
+    return floats_from_float32_little_endian(bytes, path);
 }
 
 }  // namespace openpbr::host

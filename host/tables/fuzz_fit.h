@@ -78,7 +78,7 @@ struct FuzzFitOptions
     int histogram_phi_bins = 32;       // bins over |phi_i - phi_o| in [0, pi]
     std::uint64_t seed = 0x0F0220F0u;  // base seed of the per-cell streams
     int threads = 0;                   // 0: TBB's default (every core); n > 0: at most n
-    bool progress = false;             // a progress line per 10% on stderr
+    bool progress = false;             // progress on stderr: a line per 10% (a bar on a terminal)
 };
 
 // Node coordinate -> physical parameter.

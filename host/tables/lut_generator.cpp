@@ -13,6 +13,8 @@
 #endif
 
 #include "host/tables/lut_generator.h"
+#include "host/support/files.h"
+#include "host/support/progress.h"
 #include "host/support/random.h"
 
 #include <glm/glm.hpp>  // first: the OpenPBR headers require it (interop/openpbr_interop_cpp.h)
@@ -22,32 +24,17 @@
 #include "slang/openpbr_lut.h"
 
 #include <algorithm>
-#include <atomic>
 #include <cerrno>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <fstream>
 #include <limits>
-#include <mutex>
 #include <sstream>
-#include <system_error>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
-
-#if defined(_WIN32)
-#include <io.h>
-#define OPENPBR_LUTGEN_ISATTY(fd) _isatty(fd)
-#define OPENPBR_LUTGEN_FILENO(f) _fileno(f)
-#else
-#include <unistd.h>
-#define OPENPBR_LUTGEN_ISATTY(fd) isatty(fd)
-#define OPENPBR_LUTGEN_FILENO(f) fileno(f)
-#endif
 
 namespace openpbr::host {
 namespace {
@@ -155,166 +142,7 @@ float sample_weight(const CellSetup& cell, const vec3 h)
     }
 }
 
-// ---- Progress bar --------------------------------------------------------------------------
-
-class ProgressBar
-{
-  public:
-    ProgressBar(const std::size_t total, const bool enabled, const bool terminal)
-        : total_(total), enabled_(enabled && total > 0), terminal_(terminal), start_(Clock::now())
-    {
-    }
-
-    void cell_done()
-    {
-        const std::size_t done = done_.fetch_add(1, std::memory_order_relaxed) + 1;
-        if (!enabled_)
-        {
-            return;
-        }
-        std::unique_lock<std::mutex> lock(mutex_, std::try_to_lock);
-        if (!lock.owns_lock())
-        {
-            return;  // another thread is printing; this update is skipped, not queued
-        }
-        const double elapsed = seconds_since_start();
-        if (terminal_)
-        {
-            if (elapsed - last_print_ >= 0.1 || done == total_)
-            {
-                last_print_ = elapsed;
-                print(done, elapsed);
-            }
-        }
-        else
-        {
-            const int decile = int(10 * done / total_);
-            if (decile > last_decile_)
-            {
-                last_decile_ = decile;
-                print(done, elapsed);
-            }
-        }
-    }
-
-    void finish()
-    {
-        if (!enabled_)
-        {
-            return;
-        }
-        std::lock_guard<std::mutex> lock(mutex_);
-        const std::size_t done = done_.load();
-        if (terminal_)
-        {
-            print(done, seconds_since_start());
-            std::fputc('\n', stderr);
-        }
-        else if (last_decile_ < 10)
-        {
-            print(done, seconds_since_start());
-        }
-        std::fflush(stderr);
-    }
-
-  private:
-    using Clock = std::chrono::steady_clock;
-
-    double seconds_since_start() const { return std::chrono::duration<double>(Clock::now() - start_).count(); }
-
-    void print(const std::size_t done, const double elapsed) const
-    {
-        const double fraction = double(done) / double(total_);
-        constexpr int width = 30;
-        const int filled = std::min(width, int(fraction * width));
-        char bar[width + 1];
-        for (int i = 0; i < width; ++i)
-        {
-            bar[i] = i < filled ? '#' : '.';
-        }
-        bar[width] = '\0';
-        char eta_text[32] = "?";
-        if (done > 0)
-        {
-            std::snprintf(eta_text, sizeof(eta_text), "%.1f s", elapsed * double(total_ - done) / double(done));
-        }
-        std::fprintf(stderr, "%slutgen [%s] %5.1f%%  elapsed %.1f s  ETA %s%s", terminal_ ? "\r" : "", bar, 100.0 * fraction,
-                     elapsed, eta_text, terminal_ ? "   " : "\n");
-        std::fflush(stderr);
-    }
-
-    std::size_t total_;
-    bool enabled_;
-    bool terminal_;
-    Clock::time_point start_;
-    std::atomic<std::size_t> done_{0};
-    std::mutex mutex_;
-    double last_print_ = -1.0;
-    int last_decile_ = 0;
-};
-
 // ---- Files ---------------------------------------------------------------------------------
-
-bool host_is_little_endian()
-{
-    const std::uint32_t probe = 1;
-    unsigned char first = 0;
-    std::memcpy(&first, &probe, 1);
-    return first == 1;
-}
-
-std::uint32_t byte_swap(const std::uint32_t v)
-{
-    return (v >> 24) | ((v >> 8) & 0x0000FF00u) | ((v << 8) & 0x00FF0000u) | (v << 24);
-}
-
-// Writes `contents` to a temporary file next to `path`, then renames it over `path`.
-void write_file_atomically(const std::filesystem::path& path, const std::string& contents)
-{
-    std::filesystem::path temporary = path;
-    temporary += ".tmp";
-    {
-        std::ofstream file(temporary, std::ios::binary | std::ios::trunc);
-        if (!file)
-        {
-            throw std::runtime_error("lut_generator: cannot open " + temporary.string() +
-                                     " for writing: " + std::strerror(errno));
-        }
-        file.write(contents.data(), std::streamsize(contents.size()));
-        file.close();
-        if (!file)
-        {
-            std::error_code ignored;
-            std::filesystem::remove(temporary, ignored);
-            throw std::runtime_error("lut_generator: cannot write " + temporary.string());
-        }
-    }
-    std::error_code error;
-    std::filesystem::rename(temporary, path, error);
-    if (error)
-    {
-        std::error_code ignored;
-        std::filesystem::remove(temporary, ignored);
-        throw std::runtime_error("lut_generator: cannot rename " + temporary.string() + " to " + path.string() + ": " +
-                                 error.message());
-    }
-}
-
-std::string read_whole_file(const std::filesystem::path& path)
-{
-    std::ifstream file(path, std::ios::binary);
-    if (!file)
-    {
-        throw std::runtime_error("lut_generator: cannot open " + path.string() + ": " + std::strerror(errno));
-    }
-    std::ostringstream contents;
-    contents << file.rdbuf();
-    if (file.bad())
-    {
-        throw std::runtime_error("lut_generator: cannot read " + path.string());
-    }
-    return contents.str();
-}
 
 void check_finite(const std::vector<float>& data, const std::filesystem::path& path)
 {
@@ -705,8 +533,7 @@ std::vector<float> generate_lut(const LutGeneratorOptions& options)
     const LutLayout layout = options.layout();
     const std::size_t total = layout.total_count();
     std::vector<float> data(total, 0.0f);
-    const bool terminal = OPENPBR_LUTGEN_ISATTY(OPENPBR_LUTGEN_FILENO(stderr)) != 0;
-    ProgressBar progress(total, options.progress_always || (options.progress && terminal), terminal);
+    ProgressReporter progress(total, options.progress_always || (options.progress && stderr_is_terminal()), "lutgen");
 
     std::size_t offsets[lut_table_count];
     for (int t = 0; t < lut_table_count; ++t)
@@ -745,7 +572,7 @@ std::vector<float> generate_lut(const LutGeneratorOptions& options)
                                        options.samples, lut_cell_seed(table, local, options.seed));
         }
         data[index] = options.bits == 16 ? round_to_half(float(value)) : float(value);
-        progress.cell_done();
+        progress.advance();
     };
 
     tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
@@ -850,19 +677,7 @@ std::vector<float> read_lut_values_inc(const std::filesystem::path& path)
 void write_lut_binary(const std::filesystem::path& path, const std::vector<float>& data)
 {
     check_finite(data, path);
-    std::string bytes(data.size() * sizeof(float), '\0');
-    const bool swap = !host_is_little_endian();
-    for (std::size_t i = 0; i < data.size(); ++i)
-    {
-        std::uint32_t bits = 0;
-        std::memcpy(&bits, &data[i], sizeof(bits));
-        if (swap)
-        {
-            bits = byte_swap(bits);
-        }
-        std::memcpy(&bytes[i * sizeof(bits)], &bits, sizeof(bits));
-    }
-    write_file_atomically(path, bytes);
+    write_float32_file(path, data);
 }
 
 std::vector<float> read_lut_binary(const std::filesystem::path& path, const std::size_t expected_count)
@@ -880,19 +695,7 @@ std::vector<float> read_lut_binary(const std::filesystem::path& path, const std:
                                  " values, expected " + std::to_string(expected_count) + " (" +
                                  std::to_string(expected_count * sizeof(float)) + " bytes)");
     }
-    std::vector<float> data(count);
-    const bool swap = !host_is_little_endian();
-    for (std::size_t i = 0; i < count; ++i)
-    {
-        std::uint32_t bits = 0;
-        std::memcpy(&bits, &bytes[i * sizeof(bits)], sizeof(bits));
-        if (swap)
-        {
-            bits = byte_swap(bits);
-        }
-        std::memcpy(&data[i], &bits, sizeof(bits));
-    }
-    return data;
+    return floats_from_float32_little_endian(bytes, path);
 }
 
 double max_abs_difference(const std::vector<float>& a, const std::vector<float>& b, const int table, const LutLayout& layout)

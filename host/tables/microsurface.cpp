@@ -1,11 +1,11 @@
 // microsurface.cpp - see microsurface.h. Double precision throughout; no shader code.
 #include "host/tables/microsurface.h"
+#include "host/support/files.h"
 #include "host/support/random.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <limits>
 #include <sstream>
 #include <stdexcept>
@@ -273,8 +273,7 @@ MicrosurfaceCache::MicrosurfaceCache(std::filesystem::path path) : file(std::mov
     }
     try
     {
-        std::ifstream stream(file);
-        const nlohmann::json document = nlohmann::json::parse(stream);
+        const nlohmann::json document = nlohmann::json::parse(read_whole_file(file));
         if (document.value("version", 0) != 1)
         {
             return;
@@ -339,16 +338,7 @@ void MicrosurfaceCache::save() const
     {
         std::filesystem::create_directories(file.parent_path());
     }
-    const std::filesystem::path temporary = file.string() + ".tmp";
-    {
-        std::ofstream stream(temporary);
-        stream << document.dump() << "\n";
-        if (!stream)
-        {
-            throw std::runtime_error("cannot write the ground-truth cache " + temporary.string());
-        }
-    }
-    std::filesystem::rename(temporary, file);
+    write_file_atomically(file, document.dump() + "\n");
 }
 
 }  // namespace openpbr::host

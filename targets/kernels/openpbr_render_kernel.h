@@ -57,12 +57,14 @@
 // The includer defines OPENPBR_RENDER_PARAMETER(index) -> uint, OPENPBR_RENDER_SCENE(index)
 // -> float, OPENPBR_RENDER_MATERIAL(index) -> float, OPENPBR_RENDER_ACCUMULATION_READ(index)
 // -> float and OPENPBR_RENDER_ACCUMULATION_WRITE(index, value), and has the OpenPBR API in
-// scope. The kernel does not use openpbr_unpack_material (its read macro is fixed per
-// program in C++: two different definitions of that inline function would violate the ODR);
-// it expands the same parameter table (OPENPBR_PARAMETERS) into its own reader.
+// scope. Its packed-material reader is openpbr_render_unpack_material, the reader of
+// slang/openpbr_material_packing.h under its own name (the conformance kernel's
+// openpbr_unpack_material reads another buffer in the same C++ program).
 #ifndef OPENPBR_RENDER_KERNEL_H
 #define OPENPBR_RENDER_KERNEL_H
 
+#define OPENPBR_MATERIAL_UNPACK_NAME openpbr_render_unpack_material
+#define OPENPBR_MATERIAL_UNPACK_READ(index) OPENPBR_RENDER_MATERIAL(index)
 #include "../../slang/openpbr_material_packing.h"
 
 // ---- Parameter buffer (uint) ----
@@ -192,40 +194,6 @@ OPENPBR_FUNC vec3 openpbr_render_scene_vec3(uint index)
 {
     return vec3(OPENPBR_RENDER_SCENE(index), OPENPBR_RENDER_SCENE(index + 1u), OPENPBR_RENDER_SCENE(index + 2u));
 }
-
-#define OPENPBR_RENDER_UNPACK_VEC3(name)                                                                                \
-    material.name =                                                                                                     \
-        vec3(OPENPBR_RENDER_MATERIAL(index), OPENPBR_RENDER_MATERIAL(index + 1u), OPENPBR_RENDER_MATERIAL(index + 2u)); \
-    index += 3u;
-#define OPENPBR_RENDER_UNPACK_FLOAT(name, default_value, low, high) \
-    material.name = OPENPBR_RENDER_MATERIAL(index);                 \
-    index += 1u;
-#define OPENPBR_RENDER_UNPACK_COLOR(name, default_r, default_g, default_b, low, high) OPENPBR_RENDER_UNPACK_VEC3(name)
-#define OPENPBR_RENDER_UNPACK_VECTOR2(name, default_x, default_y)                              \
-    material.name = vec2(OPENPBR_RENDER_MATERIAL(index), OPENPBR_RENDER_MATERIAL(index + 1u)); \
-    index += 2u;
-#define OPENPBR_RENDER_UNPACK_BOOL(name, default_value)     \
-    material.name = OPENPBR_RENDER_MATERIAL(index) != 0.0f; \
-    index += 1u;
-#define OPENPBR_RENDER_UNPACK_BASIS(name, normal_input, tangent_input) \
-    OPENPBR_RENDER_UNPACK_VEC3(name.tangent)                           \
-    OPENPBR_RENDER_UNPACK_VEC3(name.bitangent) OPENPBR_RENDER_UNPACK_VEC3(name.normal)
-
-OPENPBR_FUNC OpenPBR_ResolvedInputs openpbr_render_unpack_material(uint material_index)
-{
-    OpenPBR_ResolvedInputs material = openpbr_make_default_resolved_inputs();
-    uint index = material_index * uint(OPENPBR_PACKED_MATERIAL_FLOATS);
-    OPENPBR_PARAMETERS(OPENPBR_RENDER_UNPACK_FLOAT, OPENPBR_RENDER_UNPACK_COLOR, OPENPBR_RENDER_UNPACK_VECTOR2,
-                       OPENPBR_RENDER_UNPACK_BOOL, OPENPBR_RENDER_UNPACK_BASIS)
-    return material;
-}
-
-#undef OPENPBR_RENDER_UNPACK_VEC3
-#undef OPENPBR_RENDER_UNPACK_FLOAT
-#undef OPENPBR_RENDER_UNPACK_COLOR
-#undef OPENPBR_RENDER_UNPACK_VECTOR2
-#undef OPENPBR_RENDER_UNPACK_BOOL
-#undef OPENPBR_RENDER_UNPACK_BASIS
 
 // ---- Geometry ----
 

@@ -1,6 +1,7 @@
 // Implementation of the statistical test machinery; see bsdf_statistics.h.
 #include "tests/bsdf/bsdf_statistics.h"
 #include "host/support/random.h"
+#include "host/support/directional_albedo.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -1130,70 +1131,49 @@ ConsistencyResult check_sample_consistency(const SamplingTarget& target, const C
 AlbedoEstimate estimate_albedo(const SamplingTarget& target, std::uint64_t sample_count, std::uint64_t seed,
                                SamplerKind sampler, int replicas)
 {
-    AlbedoEstimate estimate;
-    estimate.sample_count = sample_count;
-    struct Sums
-    {
-        glm::dvec3 sum{0.0};
-        glm::dvec3 sum_squares{0.0};
-        glm::dvec3 max{0.0};
-        std::uint64_t count = 0;
-    };
-    const auto accumulate = [&](Sums& sums, const glm::vec3& u) {
+    // The host's one directional-albedo estimator (host/support/directional_albedo.h); this
+    // function only draws the samples.
+    const auto weight_of = [&](const glm::vec3& u) {
         const DirectionSample s = target.sample(u);
-        const glm::dvec3 w = s.is_valid() ? glm::dvec3(s.total_weight()) : glm::dvec3(0.0);
-        sums.sum += w;
-        sums.sum_squares += w * w;
-        sums.max = glm::max(sums.max, w);
-        ++sums.count;
+        return s.is_valid() ? glm::dvec3(s.total_weight()) : glm::dvec3(0.0);
     };
+    openpbr::host::DirectionalAlbedo albedo;
     if (sampler == SamplerKind::independent)
     {
         const ChunkPlan plan = plan_chunks(sample_count);
-        std::vector<Sums> partial(plan.chunks);
+        std::vector<openpbr::host::SampleWeightSums> partial(plan.chunks);
         parallel_for_index(plan.chunks, [&](std::uint64_t chunk) {
             for_each_independent_sample(seed, chunk, plan.begin(chunk), plan.end(chunk),
-                                        [&](std::uint64_t, const glm::vec3& u) { accumulate(partial[chunk], u); });
+                                        [&](std::uint64_t, const glm::vec3& u) {
+                                            const glm::dvec3 w = weight_of(u);
+                                            partial[chunk].add(w.x, w.y, w.z);
+                                        });
         });
-        Sums total;
-        for (const Sums& s : partial)
+        openpbr::host::SampleWeightSums total;
+        for (const openpbr::host::SampleWeightSums& s : partial)
         {
-            total.sum += s.sum;
-            total.sum_squares += s.sum_squares;
-            total.max = glm::max(total.max, s.max);
+            total.merge(s);
         }
-        const double n = static_cast<double>(sample_count);
-        estimate.mean = total.sum / n;
-        const glm::dvec3 variance = glm::max(total.sum_squares / n - estimate.mean * estimate.mean, glm::dvec3(0.0));
-        estimate.standard_error = glm::sqrt(variance / std::max(n - 1.0, 1.0));
-        estimate.max_weight = total.max;
-        return estimate;
+        albedo = openpbr::host::directional_albedo_from_sums(total);
     }
-    // Randomized QMC: independent replicas, each a shifted Kronecker sequence.
-    const int r = std::max(replicas, 2);
-    const std::uint64_t per_replica = std::max<std::uint64_t>(1, sample_count / static_cast<std::uint64_t>(r));
-    std::vector<Sums> partial(static_cast<std::size_t>(r));
-    parallel_for_index(static_cast<std::uint64_t>(r), [&](std::uint64_t replica) {
-        const KroneckerSequence sequence(mix_seed(seed) ^ (replica * 0x9e3779b97f4a7c15ull));
-        for (std::uint64_t i = 0; i < per_replica; ++i)
-        {
-            accumulate(partial[replica], sequence.at(i));
-        }
-    });
-    glm::dvec3 sum_of_means(0.0);
-    glm::dvec3 sum_of_squared_means(0.0);
-    for (const Sums& s : partial)
+    else
     {
-        const glm::dvec3 mean = s.sum / static_cast<double>(s.count);
-        sum_of_means += mean;
-        sum_of_squared_means += mean * mean;
-        estimate.max_weight = glm::max(estimate.max_weight, s.max);
+        // Randomized QMC: independent replicas, each a shifted Kronecker sequence.
+        const int r = std::max(replicas, 2);
+        const std::uint64_t per_replica = std::max<std::uint64_t>(1, sample_count / static_cast<std::uint64_t>(r));
+        std::vector<openpbr::host::SampleWeightSums> partial(static_cast<std::size_t>(r));
+        parallel_for_index(static_cast<std::uint64_t>(r), [&](std::uint64_t replica) {
+            const KroneckerSequence sequence(mix_seed(seed) ^ (replica * 0x9e3779b97f4a7c15ull));
+            openpbr::host::accumulate_sample_weights(partial[replica], 0, per_replica,
+                                                     [&](std::uint64_t i) { return weight_of(sequence.at(i)); });
+        });
+        albedo = openpbr::host::directional_albedo_from_replicas(partial);
     }
-    estimate.mean = sum_of_means / double(r);
-    const glm::dvec3 variance = glm::max(sum_of_squared_means / double(r) - estimate.mean * estimate.mean, glm::dvec3(0.0)) *
-                                (double(r) / (r - 1.0));
-    estimate.standard_error = glm::sqrt(variance / double(r));
-    estimate.sample_count = per_replica * static_cast<std::uint64_t>(r);
+    AlbedoEstimate estimate;
+    estimate.sample_count = albedo.samples;
+    estimate.mean = glm::dvec3(albedo.mean[0], albedo.mean[1], albedo.mean[2]);
+    estimate.standard_error = glm::dvec3(albedo.standard_error[0], albedo.standard_error[1], albedo.standard_error[2]);
+    estimate.max_weight = glm::dvec3(albedo.max_weight[0], albedo.max_weight[1], albedo.max_weight[2]);
     return estimate;
 }
 
