@@ -146,7 +146,7 @@ CLI::App* add_features_subcommand(CLI::App& parent, const CommandContext& contex
         ->check(CLI::Range(2, 1000));
     gpu_command
         ->add_option("--rounds", gpu->options.rounds,
-                     "passes over every entry, the fastest pass counts (e.g. 3 on a shared machine)")
+                     "passes over every entry, median of the passes (e.g. 6 on a shared machine)")
         ->capture_default_str()
         ->check(CLI::Range(1, 100));
     gpu_command->add_option("--path", gpu->options.path, "Vulkan path, e.g. slang-spirv or glsl-spirv")

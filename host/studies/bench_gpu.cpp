@@ -118,6 +118,14 @@ nlohmann::json feature_costs(const nlohmann::json& classes)
     return costs;
 }
 
+// The middle value (the mean of the two middle ones for an even count) of a non-empty list.
+double median(std::vector<double> values)
+{
+    std::sort(values.begin(), values.end());
+    const std::size_t middle = values.size() / 2;
+    return values.size() % 2 == 1 ? values[middle] : 0.5 * (values[middle - 1] + values[middle]);
+}
+
 // One round of the Vulkan timings of one entry, full and specialized pipeline, every mode: the
 // median over the repeats after the first is appended to the cell's "ns_per_round".
 void measure_vulkan(SpecializedPipelineCache& cache, const BenchClass& bench_class, const GpuBenchOptions& options,
@@ -176,7 +184,7 @@ nlohmann::json run_gpu_bench(const GpuBenchOptions& options)
     report["rounds"] = options.rounds;
     report["vulkan_path"] = options.path;
     report["timing"] = "device: Vulkan timestamps around the dispatch (buffers device-local, uploaded once), median "
-                       "after the first, the fastest round; CUDA events around the launch, median after a warm-up";
+                       "after the first, median of the rounds; CUDA events around the launch, median after a warm-up";
     std::optional<VulkanContext> context;
     std::string context_error = "not requested";
     if (options.vulkan)
@@ -236,7 +244,9 @@ nlohmann::json run_gpu_bench(const GpuBenchOptions& options)
     if (context)
     {
         // Rounds over every entry, so a slow spell of a shared machine falls on all entries rather
-        // than on the ones measured during it.
+        // than on the ones measured during it; the median of the rounds drops the spells (the
+        // fastest round was tried: on the 2-core machine at load 9-11 one lucky round put a
+        // variant at a third of an identical one's time).
         for (int round = 0; round < options.rounds; ++round)
         {
             for (std::size_t index = 0; index < classes.size(); ++index)
@@ -253,9 +263,7 @@ nlohmann::json run_gpu_bench(const GpuBenchOptions& options)
                     nlohmann::json& cell = entry["vulkan"][pipeline_name][operation.name];
                     if (cell.contains("ns_per_round"))
                     {
-                        const std::vector<double> rounds = cell["ns_per_round"].get<std::vector<double>>();
-                        const double fastest = *std::min_element(rounds.begin(), rounds.end());
-                        cell.update(rate(fastest));
+                        cell.update(rate(median(cell["ns_per_round"].get<std::vector<double>>())));
                     }
                 }
             }

@@ -4,7 +4,7 @@
 //     targets/kernels/openpbr_conformance_kernel.h), with its buffers in device-local memory
 //     uploaded once (DispatchRequest::device_local) and the time between two
 //     vkCmdWriteTimestamp around the dispatch (ticks x timestampPeriod), median over repeats
-//     after the first, the fastest of `rounds` passes over every entry; per material class
+//     after the first, median over `rounds` passes over every entry; per material class
 //     (the materials grouped by the toggle set they need, host/scene/features.h), on the full
 //     pipeline and on the pipeline specialized to the class.
 //   - CUDA: the CUDA conformance program's kernels timed with CUDA events (median of 5 after a
@@ -39,8 +39,8 @@ struct GpuBenchOptions
     std::string path = "slang-spirv";  // Vulkan path, e.g. "glsl-spirv"
     std::size_t queries = 1u << 20;    // queries per class and kernel, e.g. 4096 on lavapipe
     int repeats = 10;                  // dispatches per kernel, median of 2..n, e.g. 10
-    // Vulkan: passes over every entry, each rate the fastest pass's median, e.g. 3 on a shared
-    // machine (a slow spell then falls on every entry, not on those measured during it).
+    // Vulkan: passes over every entry, each rate the median of the passes' medians, e.g. 6 on a
+    // shared machine (a slow spell then falls on every entry, not on those measured during it).
     int rounds = 1;
     bool vulkan = true;     // false: skip Vulkan
     bool cuda = true;       // false: skip the CUDA program
