@@ -1,6 +1,7 @@
-// CPU cost of the BSDF API per bundled material: ns per prepare, eval, sample and pdf
-// (Google Benchmark; numbers go to docs/performance.md). Queries cycle through a fixed set of
-// directions so the branch pattern is that of a real batch, not one repeated input.
+// CPU cost of the BSDF API per feature variant (host/studies/feature_variants.h: Default,
+// EveryLobe, Only/<feature>, Without/<feature>) and per bundled material: ns per prepare, eval,
+// sample and pdf (Google Benchmark; numbers go to docs/performance.md). Queries cycle through a
+// fixed set of directions so the branch pattern is that of a real batch, not one repeated input.
 #include <benchmark/benchmark.h>
 
 #include <random>
@@ -8,6 +9,7 @@
 #include <vector>
 
 #include "host/scene/material_library.h"
+#include "host/studies/feature_variants.h"
 #include "slang/openpbr.h"
 
 namespace {
@@ -95,54 +97,6 @@ void benchmark_pdf(benchmark::State& state, const OpenPBR_ResolvedInputs& inputs
                        [](const OpenPBR_PreparedBsdf& bsdf, int i) { return openpbr_pdf(bsdf, directions().lights[i]); });
 }
 
-// One feature of the every-lobe material: its name and how it is switched on and off. The
-// per-feature cost table in docs/performance.md reads two rows per feature: "Only/<feature>"
-// (the default material plus that feature, as the every-lobe material sets it) against
-// "Default", and "Without/<feature>" (every lobe but that one) against "EveryLobe".
-struct Feature
-{
-    const char* name;
-    void (*switch_on)(OpenPBR_ResolvedInputs&);
-    void (*switch_off)(OpenPBR_ResolvedInputs&);
-};
-
-const Feature features[] = {
-    {"metal", [](OpenPBR_ResolvedInputs& m) { m.base_metalness = 0.3f; },
-     [](OpenPBR_ResolvedInputs& m) { m.base_metalness = 0.0f; }},
-    {"diffuse_roughness", [](OpenPBR_ResolvedInputs& m) { m.base_diffuse_roughness = 0.5f; },
-     [](OpenPBR_ResolvedInputs& m) { m.base_diffuse_roughness = 0.0f; }},
-    {"anisotropy", [](OpenPBR_ResolvedInputs& m) { m.specular_roughness_anisotropy = 0.5f; },
-     [](OpenPBR_ResolvedInputs& m) { m.specular_roughness_anisotropy = 0.0f; }},
-    {"transmission", [](OpenPBR_ResolvedInputs& m) { m.transmission_weight = 0.3f; },
-     [](OpenPBR_ResolvedInputs& m) { m.transmission_weight = 0.0f; }},
-    {"subsurface", [](OpenPBR_ResolvedInputs& m) { m.subsurface_weight = 0.3f; },
-     [](OpenPBR_ResolvedInputs& m) { m.subsurface_weight = 0.0f; }},
-    {"fuzz", [](OpenPBR_ResolvedInputs& m) { m.fuzz_weight = 0.3f; },
-     [](OpenPBR_ResolvedInputs& m) { m.fuzz_weight = 0.0f; }},
-    {"coat",
-     [](OpenPBR_ResolvedInputs& m) {
-         m.coat_weight = 0.5f;
-         m.coat_roughness = 0.2f;
-         m.coat_color = vec3(0.9f, 0.8f, 0.7f);
-     },
-     [](OpenPBR_ResolvedInputs& m) { m.coat_weight = 0.0f; }},
-    {"thin_film", [](OpenPBR_ResolvedInputs& m) { m.thin_film_weight = 0.5f; },
-     [](OpenPBR_ResolvedInputs& m) { m.thin_film_weight = 0.0f; }},
-    {"emission", [](OpenPBR_ResolvedInputs& m) { m.emission_luminance = 1.0f; },
-     [](OpenPBR_ResolvedInputs& m) { m.emission_luminance = 0.0f; }},
-};
-
-// A material with every lobe at partial weight: the most expensive configuration.
-OpenPBR_ResolvedInputs every_lobe_material()
-{
-    OpenPBR_ResolvedInputs inputs = openpbr_make_default_resolved_inputs();
-    for (const Feature& feature : features)
-    {
-        feature.switch_on(inputs);
-    }
-    return inputs;
-}
-
 void register_material(const std::string& name, const OpenPBR_ResolvedInputs& inputs)
 {
     benchmark::RegisterBenchmark(("prepare/" + name).c_str(), benchmark_prepare, inputs);
@@ -155,16 +109,10 @@ void register_material(const std::string& name, const OpenPBR_ResolvedInputs& in
 
 int main(int argc, char** argv)
 {
-    register_material("Default", openpbr_make_default_resolved_inputs());
-    register_material("EveryLobe", every_lobe_material());
-    for (const Feature& feature : features)
+    // The rows of the per-feature cost table (host/studies/feature_variants.h).
+    for (const openpbr::host::FeatureVariant& variant : openpbr::host::feature_variants())
     {
-        OpenPBR_ResolvedInputs only = openpbr_make_default_resolved_inputs();
-        feature.switch_on(only);
-        register_material(std::string("Only/") + feature.name, only);
-        OpenPBR_ResolvedInputs without = every_lobe_material();
-        feature.switch_off(without);
-        register_material(std::string("Without/") + feature.name, without);
+        register_material(variant.name, variant.inputs);
     }
     for (const openpbr::host::Material& material : openpbr::host::load_material_directory(OPENPBR_MATERIALS_DIR))
     {

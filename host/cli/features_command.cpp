@@ -144,10 +144,18 @@ CLI::App* add_features_subcommand(CLI::App& parent, const CommandContext& contex
     gpu_command->add_option("--repeats", gpu->options.repeats, "dispatches per kernel (median of 2..n)")
         ->capture_default_str()
         ->check(CLI::Range(2, 1000));
+    gpu_command
+        ->add_option("--rounds", gpu->options.rounds,
+                     "passes over every entry, median of the passes (e.g. 6 on a shared machine)")
+        ->capture_default_str()
+        ->check(CLI::Range(1, 100));
     gpu_command->add_option("--path", gpu->options.path, "Vulkan path, e.g. slang-spirv or glsl-spirv")
         ->capture_default_str();
     gpu_command->add_flag("--no-vulkan", gpu->no_vulkan, "skip Vulkan");
     gpu_command->add_flag("--no-cuda", gpu->no_cuda, "skip the CUDA program");
+    gpu_command->add_flag("--features", gpu->options.features,
+                          "per feature variant (Default, EveryLobe, Only/<feature>, Without/<feature>) instead of "
+                          "per material class: the per-feature cost table of docs/performance.md");
     gpu_command->callback([gpu, context]() {
         run_reporting_errors(
             [&]() {

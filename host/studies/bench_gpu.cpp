@@ -12,6 +12,7 @@
 #include "host/gpu/vulkan_runner.h"
 #include "host/scene/features.h"
 #include "host/scene/material_library.h"
+#include "host/studies/feature_variants.h"
 
 namespace openpbr::host {
 
@@ -30,24 +31,156 @@ nlohmann::json rate(double ns_per_query)
     return {{"ns_per_query", ns_per_query}, {"queries_per_second", ns_per_query > 0.0 ? 1e9 / ns_per_query : 0.0}};
 }
 
+// What one entry of the report measures: a material class (the materials that need one toggle
+// set) or one feature variant (a single material, named).
+struct BenchClass
+{
+    std::string variant;  // empty for a material class, e.g. "Only/coat"
+    std::uint32_t mask;   // the toggle set the specialized pipeline gets
+    std::vector<Material> members;
+};
+
+std::vector<BenchClass> bench_classes(const GpuBenchOptions& options)
+{
+    std::vector<BenchClass> bench;
+    if (options.features)
+    {
+        for (const FeatureVariant& variant : feature_variants())
+        {
+            Material material = default_material();
+            material.name = variant.name;
+            material.inputs = variant.inputs;
+            bench.push_back({variant.name, required_feature_mask(material), {material}});
+        }
+        return bench;
+    }
+    // Material classes: the materials grouped by the toggle set they need.
+    std::map<std::uint32_t, std::vector<Material>> classes;
+    for (const Material& material : conformance_materials(load_material_directory(options.materials_directory)))
+    {
+        classes[required_feature_mask(material)].push_back(material);
+    }
+    for (const auto& [mask, members] : classes)
+    {
+        bench.push_back({std::string(), mask, members});
+    }
+    return bench;
+}
+
+// ns per query of one variant, pipeline and operation; NaN where the queue had no timestamps.
+double variant_ns(const nlohmann::json& classes, const std::string& variant, const char* pipeline, const char* operation)
+{
+    for (const nlohmann::json& entry : classes)
+    {
+        if (entry.value("variant", "") == variant)
+        {
+            const nlohmann::json& rate = entry["vulkan"][pipeline][operation];
+            return rate.contains("ns_per_query") ? rate["ns_per_query"].get<double>() : std::nan("");
+        }
+    }
+    return std::nan("");
+}
+
+// Per feature, pipeline and operation: "alone" = Only/<feature> minus Default (what the feature
+// adds to the default material), "saved" = EveryLobe minus Without/<feature> (what leaving it
+// out of the every-lobe material saves), in ns per query, as the CPU table of docs/performance.md
+// reads benchmark_bsdf's rows.
+nlohmann::json feature_costs(const nlohmann::json& classes)
+{
+    nlohmann::json costs = nlohmann::json::object();
+    for (const CostFeature& feature : cost_features())
+    {
+        for (const char* pipeline : {"full", "specialized"})
+        {
+            for (const Operation& operation : operations)
+            {
+                const double alone = variant_ns(classes, std::string("Only/") + feature.name, pipeline, operation.name) -
+                                     variant_ns(classes, "Default", pipeline, operation.name);
+                const double saved = variant_ns(classes, "EveryLobe", pipeline, operation.name) -
+                                     variant_ns(classes, std::string("Without/") + feature.name, pipeline, operation.name);
+                nlohmann::json& cell = costs[feature.name][pipeline][operation.name];
+                // JSON has no NaN: a missing timing stays a missing key.
+                if (std::isfinite(alone))
+                {
+                    cell["alone_ns"] = alone;
+                }
+                if (std::isfinite(saved))
+                {
+                    cell["saved_ns"] = saved;
+                }
+            }
+        }
+    }
+    return costs;
+}
+
+// The middle value (the mean of the two middle ones for an even count) of a non-empty list.
+double median(std::vector<double> values)
+{
+    std::sort(values.begin(), values.end());
+    const std::size_t middle = values.size() / 2;
+    return values.size() % 2 == 1 ? values[middle] : 0.5 * (values[middle - 1] + values[middle]);
+}
+
+// One round of the Vulkan timings of one entry, full and specialized pipeline, every mode: the
+// median over the repeats after the first is appended to the cell's "ns_per_round".
+void measure_vulkan(SpecializedPipelineCache& cache, const BenchClass& bench_class, const GpuBenchOptions& options,
+                    bool first_round, nlohmann::json& entry)
+{
+    const std::vector<float> queries = make_queries(options.queries, bench_class.members.size(), 1);
+    const std::vector<float> packed = pack_materials(bench_class.members);
+    for (const auto& [pipeline_name, pipeline_mask] :
+         {std::pair<const char*, std::uint32_t>{"full", full_feature_mask()}, {"specialized", bench_class.mask}})
+    {
+        ComputePipeline& pipeline = cache.pipeline(pipeline_mask);
+        bool statistics_reported = !first_round;
+        for (const Operation& operation : operations)
+        {
+            ConformanceDispatchSettings settings;
+            settings.mode = operation.mode;
+            settings.device_local = true;
+            const DispatchTiming timing =
+                dispatch_conformance_pipeline(pipeline, queries, packed, options.repeats, settings).timing;
+            nlohmann::json& cell = entry["vulkan"][pipeline_name][operation.name];
+            if (timing.device_dispatch_ms)
+            {
+                cell["ns_per_round"].push_back(*timing.device_dispatch_ms * 1e6 / double(options.queries));
+            }
+            else
+            {
+                cell["note"] = "the queue has no timestamps";
+                cell["host_ns_per_round"].push_back(timing.dispatch_ms * 1e6 / double(options.queries));
+            }
+            if (!statistics_reported)
+            {
+                // After the first dispatch: lavapipe compiles there. Register count, spills and
+                // the like where the driver reports them.
+                nlohmann::json statistics = nlohmann::json::object();
+                for (const PipelineStatistic& statistic : pipeline.statistics())
+                {
+                    statistics[statistic.name] = statistic.value;
+                }
+                entry["vulkan"][std::string(pipeline_name) + "_statistics"] = statistics;
+                statistics_reported = true;
+            }
+        }
+    }
+}
+
 }  // namespace
 
 nlohmann::json run_gpu_bench(const GpuBenchOptions& options)
 {
-    const std::vector<Material> materials = conformance_materials(load_material_directory(options.materials_directory));
-    // Material classes: the materials grouped by the toggle set they need.
-    std::map<std::uint32_t, std::vector<Material>> classes;
-    for (const Material& material : materials)
-    {
-        classes[required_feature_mask(material)].push_back(material);
-    }
+    const std::vector<BenchClass> classes = bench_classes(options);
 
     nlohmann::json report;
+    report["set"] = options.features ? "features" : "material classes";
     report["queries_per_class"] = options.queries;
     report["repeats"] = options.repeats;
+    report["rounds"] = options.rounds;
     report["vulkan_path"] = options.path;
-    report["timing"] = "device: Vulkan timestamps around the dispatch (buffers device-local, uploaded once), CUDA "
-                       "events around the launch; median after the first";
+    report["timing"] = "device: Vulkan timestamps around the dispatch (buffers device-local, uploaded once), median "
+                       "after the first, median of the rounds; CUDA events around the launch, median after a warm-up";
     std::optional<VulkanContext> context;
     std::string context_error = "not requested";
     if (options.vulkan)
@@ -64,9 +197,13 @@ nlohmann::json run_gpu_bench(const GpuBenchOptions& options)
     }
     report["cuda_device"] = options.cuda ? "none" : "not requested";
     report["classes"] = nlohmann::json::array();
-    for (const auto& [mask, members] : classes)
+    for (const auto& [variant, mask, members] : classes)
     {
         nlohmann::json entry;
+        if (!variant.empty())
+        {
+            entry["variant"] = variant;
+        }
         entry["toggles"] = feature_set_label(mask);
         std::vector<std::string> names;
         for (const Material& material : members)
@@ -74,50 +211,9 @@ nlohmann::json run_gpu_bench(const GpuBenchOptions& options)
             names.push_back(material.name);
         }
         entry["materials"] = names;
-        const std::vector<float> queries = make_queries(options.queries, members.size(), 1);
-        if (context)
-        {
-            const std::vector<float> packed = pack_materials(members);
-            for (const auto& [pipeline_name, pipeline_mask] :
-                 {std::pair<const char*, std::uint32_t>{"full", full_feature_mask()}, {"specialized", mask}})
-            {
-                ComputePipeline& pipeline = cache->pipeline(pipeline_mask);
-                bool statistics_reported = false;
-                for (const Operation& operation : operations)
-                {
-                    ConformanceDispatchSettings settings;
-                    settings.mode = operation.mode;
-                    settings.device_local = true;
-                    const DispatchTiming timing =
-                        dispatch_conformance_pipeline(pipeline, queries, packed, options.repeats, settings).timing;
-                    if (timing.device_dispatch_ms)
-                    {
-                        entry["vulkan"][pipeline_name][operation.name] =
-                            rate(*timing.device_dispatch_ms * 1e6 / double(options.queries));
-                    }
-                    else
-                    {
-                        entry["vulkan"][pipeline_name][operation.name] = {
-                            {"note", "the queue has no timestamps"},
-                            {"host_ns_per_query", timing.dispatch_ms * 1e6 / double(options.queries)}};
-                    }
-                    if (!statistics_reported)
-                    {
-                        // After the first dispatch: lavapipe compiles there. Register count,
-                        // spills and the like where the driver reports them.
-                        nlohmann::json statistics = nlohmann::json::object();
-                        for (const PipelineStatistic& statistic : pipeline.statistics())
-                        {
-                            statistics[statistic.name] = statistic.value;
-                        }
-                        entry["vulkan"][std::string(pipeline_name) + "_statistics"] = statistics;
-                        statistics_reported = true;
-                    }
-                }
-            }
-        }
         if (options.cuda)
         {
+            const std::vector<float> queries = make_queries(options.queries, members.size(), 1);
             for (const ExternalPathResult& external :
                  run_cuda_conformance_program(default_cuda_conformance_program(), queries, pack_materials(members)))
             {
@@ -140,6 +236,42 @@ nlohmann::json run_gpu_bench(const GpuBenchOptions& options)
             }
         }
         report["classes"].push_back(entry);
+    }
+    if (context)
+    {
+        // Rounds over every entry, so a slow spell of a shared machine falls on all entries rather
+        // than on the ones measured during it; the median of the rounds drops the spells (the
+        // fastest round was tried: on the 2-core machine at load 9-11 one lucky round put a
+        // variant at a third of an identical one's time).
+        for (int round = 0; round < options.rounds; ++round)
+        {
+            for (std::size_t index = 0; index < classes.size(); ++index)
+            {
+                measure_vulkan(*cache, classes[index], options, round == 0, report["classes"][index]);
+            }
+        }
+        for (nlohmann::json& entry : report["classes"])
+        {
+            for (const char* pipeline_name : {"full", "specialized"})
+            {
+                for (const Operation& operation : operations)
+                {
+                    nlohmann::json& cell = entry["vulkan"][pipeline_name][operation.name];
+                    if (cell.contains("ns_per_round"))
+                    {
+                        cell.update(rate(median(cell["ns_per_round"].get<std::vector<double>>())));
+                    }
+                    if (cell.contains("host_ns_per_round"))
+                    {
+                        cell["host_ns_per_query"] = median(cell["host_ns_per_round"].get<std::vector<double>>());
+                    }
+                }
+            }
+        }
+    }
+    if (options.features && context)
+    {
+        report["feature_costs"] = feature_costs(report["classes"]);
     }
     return report;
 }
@@ -173,7 +305,14 @@ std::string gpu_bench_text(const nlohmann::json& report)
     };
     for (const nlohmann::json& entry : report["classes"])
     {
-        text << "  " << entry["toggles"].get<std::string>() << " (" << entry["materials"].size() << " materials):";
+        if (entry.contains("variant"))
+        {
+            text << "  " << entry["variant"].get<std::string>() << " (" << entry["toggles"].get<std::string>() << "):";
+        }
+        else
+        {
+            text << "  " << entry["toggles"].get<std::string>() << " (" << entry["materials"].size() << " materials):";
+        }
         if (entry.contains("vulkan"))
         {
             text << " vulkan full " << triple(entry["vulkan"]["full"]) << ", specialized "
@@ -187,6 +326,38 @@ std::string gpu_bench_text(const nlohmann::json& report)
             }
         }
         text << "\n";
+    }
+    if (report.contains("feature_costs"))
+    {
+        text << "  per feature, ns per query (eval / sample / pdf): alone = Only/<feature> - Default, saved = "
+                "EveryLobe - Without/<feature>\n";
+        auto differences = [](const nlohmann::json& operations_json, const char* key) {
+            std::ostringstream line;
+            bool first = true;
+            for (const char* name : {"eval", "sample", "pdf"})
+            {
+                line << (first ? "" : " / ");
+                first = false;
+                if (operations_json[name].contains(key))
+                {
+                    line << std::showpos << operations_json[name][key].get<double>() << std::noshowpos;
+                }
+                else
+                {
+                    line << "-";
+                }
+            }
+            return line.str();
+        };
+        // Table order (the JSON object sorts its keys).
+        for (const CostFeature& feature : cost_features())
+        {
+            const nlohmann::json& pipelines = report["feature_costs"][feature.name];
+            text << "  " << feature.name << ": full alone " << differences(pipelines["full"], "alone_ns") << ", saved "
+                 << differences(pipelines["full"], "saved_ns") << "; specialized alone "
+                 << differences(pipelines["specialized"], "alone_ns") << ", saved "
+                 << differences(pipelines["specialized"], "saved_ns") << "\n";
+        }
     }
     return text.str();
 }

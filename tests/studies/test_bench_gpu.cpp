@@ -1,20 +1,58 @@
 // `openpbr bench gpu` (host/studies/bench_gpu.h) on the Vulkan device of this machine (lavapipe)
-// with small sizes: every class, pipeline and operation reports a positive, finite device time
-// and the device is named as the driver names it. No timing thresholds: timings are measured,
-// never asserted.
+// with small sizes, over the material classes and over the feature variants (`--features`):
+// every entry, pipeline and operation reports a positive, finite device time, the device is
+// named as the driver names it, and the feature variants are those of benchmark_bsdf's table.
+// No timing thresholds: timings are measured, never asserted.
 #include <algorithm>
 #include <cmath>
+#include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
 #include "host/checks/conformance.h"
 #include "host/gpu/vulkan_runner.h"
+#include "host/scene/features.h"
 #include "host/scene/material_library.h"
 #include "host/studies/bench_gpu.h"
+#include "host/studies/feature_variants.h"
 
 namespace {
 
-TEST(BenchGpu, ReportsPositiveFiniteDeviceTimes)
+// Every entry of a report (material classes or feature variants), on both pipelines and in
+// every mode, has a positive, finite device time: the median of its rounds.
+void expect_positive_finite_rates(const nlohmann::json& report)
+{
+    ASSERT_FALSE(report["classes"].empty());
+    for (const nlohmann::json& entry : report["classes"])
+    {
+        const std::string label = entry.value("variant", entry["toggles"].get<std::string>());
+        for (const char* pipeline : {"full", "specialized"})
+        {
+            for (const char* operation : {"eval", "sample", "pdf"})
+            {
+                const nlohmann::json& rate = entry["vulkan"][pipeline][operation];
+                ASSERT_TRUE(rate.contains("ns_per_query"))
+                    << label << " " << pipeline << " " << operation << ": " << rate.dump();
+                const double ns = rate["ns_per_query"].get<double>();
+                EXPECT_TRUE(std::isfinite(ns) && ns > 0.0) << label << " " << pipeline << " " << operation;
+                EXPECT_GT(rate["queries_per_second"].get<double>(), 0.0);
+                // One median per round; the rate is the median of the rounds (of 3: the middle one).
+                std::vector<double> rounds = rate["ns_per_round"].get<std::vector<double>>();
+                ASSERT_EQ(rounds.size(), report["rounds"].get<std::size_t>()) << label << " " << pipeline;
+                std::sort(rounds.begin(), rounds.end());
+                EXPECT_EQ(ns, rounds[rounds.size() / 2]) << label << " " << pipeline;
+            }
+        }
+    }
+}
+
+// The material classes (default) and the feature variants (`--features`).
+class BenchGpuSet : public ::testing::TestWithParam<bool>
+{
+};
+
+TEST_P(BenchGpuSet, ReportsPositiveFiniteDeviceTimes)
 {
     std::string error;
     const auto context = openpbr::host::VulkanContext::create({}, &error);
@@ -28,26 +66,65 @@ TEST(BenchGpu, ReportsPositiveFiniteDeviceTimes)
     options.queries = 256;
     options.repeats = 2;
     options.cuda = false;  // the CUDA program has its own check (targets_cuda_nvcc)
+    options.features = GetParam();
+    options.rounds = options.features ? 3 : 1;  // both the single pass and the median of several
     const nlohmann::json report = openpbr::host::run_gpu_bench(options);
     EXPECT_EQ(report["vulkan_device"].get<std::string>(), context->device_name());
-    ASSERT_FALSE(report["classes"].empty());
-    for (const nlohmann::json& entry : report["classes"])
+    EXPECT_EQ(report["set"].get<std::string>(), options.features ? "features" : "material classes");
+    expect_positive_finite_rates(report);
+    EXPECT_FALSE(openpbr::host::gpu_bench_text(report).empty());
+    if (!options.features)
+    {
+        return;
+    }
+    // One entry per variant of host/studies/feature_variants.h, in its order, each a single
+    // material specialized to the toggles it needs.
+    const std::vector<openpbr::host::FeatureVariant> variants = openpbr::host::feature_variants();
+    ASSERT_EQ(report["classes"].size(), variants.size());
+    for (std::size_t v = 0; v < variants.size(); ++v)
+    {
+        const nlohmann::json& entry = report["classes"][v];
+        EXPECT_EQ(entry["variant"].get<std::string>(), variants[v].name);
+        EXPECT_EQ(entry["materials"], nlohmann::json::array({variants[v].name}));
+        EXPECT_EQ(entry["toggles"].get<std::string>(),
+                  openpbr::host::feature_set_label(openpbr::host::required_feature_mask(variants[v].inputs)));
+    }
+    // Per feature: alone = Only/<feature> - Default, saved = EveryLobe - Without/<feature>.
+    auto ns = [&](const std::string& variant, const char* pipeline, const char* operation) {
+        for (const nlohmann::json& entry : report["classes"])
+        {
+            if (entry["variant"] == variant)
+            {
+                return entry["vulkan"][pipeline][operation]["ns_per_query"].get<double>();
+            }
+        }
+        ADD_FAILURE() << "no variant " << variant;
+        return 0.0;
+    };
+    for (const openpbr::host::CostFeature& feature : openpbr::host::cost_features())
     {
         for (const char* pipeline : {"full", "specialized"})
         {
             for (const char* operation : {"eval", "sample", "pdf"})
             {
-                const nlohmann::json& rate = entry["vulkan"][pipeline][operation];
-                ASSERT_TRUE(rate.contains("ns_per_query"))
-                    << entry["toggles"] << " " << pipeline << " " << operation << ": " << rate.dump();
-                const double ns = rate["ns_per_query"].get<double>();
-                EXPECT_TRUE(std::isfinite(ns) && ns > 0.0) << entry["toggles"] << " " << pipeline << " " << operation;
-                EXPECT_GT(rate["queries_per_second"].get<double>(), 0.0);
+                const nlohmann::json& cell = report["feature_costs"][feature.name][pipeline][operation];
+                ASSERT_TRUE(cell.contains("alone_ns") && cell.contains("saved_ns"))
+                    << feature.name << " " << pipeline << " " << operation << ": " << cell.dump();
+                EXPECT_DOUBLE_EQ(cell["alone_ns"].get<double>(),
+                                 ns(std::string("Only/") + feature.name, pipeline, operation) -
+                                     ns("Default", pipeline, operation));
+                EXPECT_DOUBLE_EQ(cell["saved_ns"].get<double>(),
+                                 ns("EveryLobe", pipeline, operation) -
+                                     ns(std::string("Without/") + feature.name, pipeline, operation));
             }
         }
     }
-    EXPECT_FALSE(openpbr::host::gpu_bench_text(report).empty());
 }
+
+INSTANTIATE_TEST_SUITE_P(BenchGpu, BenchGpuSet, ::testing::Values(false, true),
+                         [](const ::testing::TestParamInfo<bool>& info) {
+                             return info.param ? std::string("Features") : std::string("MaterialClasses");
+                         });
 
 // The device-local buffers (staging copies in and out) give the same results as host-visible
 // ones, and each mode writes exactly its own operation's slots of the full run.
