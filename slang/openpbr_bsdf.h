@@ -656,8 +656,8 @@ OPENPBR_FUNC OpenPBR_DiffuseSpecular openpbr_eval(OPENPBR_IN(OpenPBR_PreparedBsd
         }
         else
         {
-            specular = openpbr_microfacet_reflection_lobe_pair_eval(bsdf.specular, specular_active, bsdf.metal,
-                                                                    metal_active, bsdf.view, light);
+            specular = openpbr_microfacet_reflection_lobe_pair_eval(bsdf.specular, specular_active, bsdf.metal, metal_active,
+                                                                    bsdf.view, light);
         }
         if (bsdf.probability_diffuse > 0.0f)
         {

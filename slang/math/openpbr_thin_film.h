@@ -739,9 +739,11 @@ OPENPBR_FUNC OpenPBR_ThinFilmBasePair openpbr_thin_film_fast_bases(OPENPBR_IN(Op
     if (with_conductor)
     {
         pair.conductor = openpbr_clamp_finite(
-            vec3(openpbr_thin_film_fast_channel(openpbr_thin_film_conductor_stack(inputs, base_n.x, base_k.x), nu.x, sigma.x),
-                 openpbr_thin_film_fast_channel(openpbr_thin_film_conductor_stack(inputs, base_n.y, base_k.y), nu.y, sigma.y),
-                 openpbr_thin_film_fast_channel(openpbr_thin_film_conductor_stack(inputs, base_n.z, base_k.z), nu.z, sigma.z)),
+            vec3(
+                openpbr_thin_film_fast_channel(openpbr_thin_film_conductor_stack(inputs, base_n.x, base_k.x), nu.x, sigma.x),
+                openpbr_thin_film_fast_channel(openpbr_thin_film_conductor_stack(inputs, base_n.y, base_k.y), nu.y, sigma.y),
+                openpbr_thin_film_fast_channel(openpbr_thin_film_conductor_stack(inputs, base_n.z, base_k.z), nu.z,
+                                               sigma.z)),
             0.0f, 1.0f);
     }
     return pair;
