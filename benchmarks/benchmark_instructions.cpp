@@ -103,21 +103,15 @@ int main(int argc, char** argv)
         const int i = int(call & (direction_count - 1));
         switch (chosen_operation)
         {
-        case 0:
-            sink = sink + openpbr_prepare(chosen->inputs, views[i]).view.x;
-            break;
+        case 0: sink = sink + openpbr_prepare(chosen->inputs, views[i]).view.x; break;
         case 1:
         {
             const OpenPBR_DiffuseSpecular value = openpbr_eval(prepared[i], lights[i]);
             sink = sink + value.diffuse.x + value.specular.x;
             break;
         }
-        case 2:
-            sink = sink + openpbr_sample(prepared[i], randoms[i]).pdf;
-            break;
-        default:
-            sink = sink + openpbr_pdf(prepared[i], lights[i]);
-            break;
+        case 2: sink = sink + openpbr_sample(prepared[i], randoms[i]).pdf; break;
+        default: sink = sink + openpbr_pdf(prepared[i], lights[i]); break;
         }
     }
     return 0;

@@ -596,15 +596,23 @@ struct OpenPBR_ThinFilmBasePair
     vec3 conductor;
 };
 
+// The pair before any stack is evaluated: 1 for each wanted base (what grazing incidence and
+// total internal reflection at a dielectric base give), 0 for a base that is not wanted.
+OPENPBR_FUNC OpenPBR_ThinFilmBasePair openpbr_thin_film_total_reflection_pair(bool with_dielectric, bool with_conductor)
+{
+    OpenPBR_ThinFilmBasePair pair;
+    pair.dielectric = vec3(with_dielectric ? 1.0f : 0.0f);
+    pair.conductor = vec3(with_conductor ? 1.0f : 0.0f);
+    return pair;
+}
+
 // One loop over the stacks whose base differs (index 0 the dielectric, 1-3 the conductor's
 // channels), so the stack code is compiled once per call site.
 OPENPBR_FUNC OpenPBR_ThinFilmBasePair openpbr_thin_film_fresnel_bases(OPENPBR_IN(OpenPBR_ThinFilmInputs) inputs,
                                                                       bool with_dielectric, float dielectric_ior,
                                                                       bool with_conductor, vec3 base_n, vec3 base_k)
 {
-    OpenPBR_ThinFilmBasePair pair;
-    pair.dielectric = vec3(with_dielectric ? 1.0f : 0.0f);
-    pair.conductor = vec3(with_conductor ? 1.0f : 0.0f);
+    OpenPBR_ThinFilmBasePair pair = openpbr_thin_film_total_reflection_pair(with_dielectric, with_conductor);
     const float n_b = openpbr_clamp_finite(dielectric_ior, OPENPBR_THIN_FILM_MIN_IOR, OPENPBR_THIN_FILM_MAX_IOR);
     const float dielectric_normal_term = openpbr_thin_film_normal_term(n_b, inputs.n_o, inputs.outside_normal_term);
     if (inputs.cos_o <= 0.0f)
@@ -714,9 +722,7 @@ OPENPBR_FUNC OpenPBR_ThinFilmBasePair openpbr_thin_film_fast_bases(OPENPBR_IN(Op
                                                                    bool with_dielectric, float dielectric_ior,
                                                                    bool with_conductor, vec3 base_n, vec3 base_k)
 {
-    OpenPBR_ThinFilmBasePair pair;
-    pair.dielectric = vec3(with_dielectric ? 1.0f : 0.0f);
-    pair.conductor = vec3(with_conductor ? 1.0f : 0.0f);
+    OpenPBR_ThinFilmBasePair pair = openpbr_thin_film_total_reflection_pair(with_dielectric, with_conductor);
     if (inputs.cos_o <= 0.0f)
     {
         return pair;
