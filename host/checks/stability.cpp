@@ -22,6 +22,7 @@
 #include "host/checks/conformance.h"
 #include "host/gpu/cuda_conformance.h"
 #include "host/scene/material_library.h"
+#include "host/support/directional_albedo.h"
 #include "host/scene/parameter_table.h"
 #include "host/gpu/vulkan_runner.h"
 #include "host/support/random.h"
@@ -364,9 +365,9 @@ struct CaseAccumulator
     std::size_t invalid = 0;
     std::size_t delta = 0;
     std::size_t bad_directions = 0;
-    double max_weight = 0.0;
-    double sum[3] = {0, 0, 0};
-    double sum_squares[3] = {0, 0, 0};
+    // Sample weights (diffuse + specular) of the sampling queries, a sample without a direction
+    // weighing 0 (host/support/directional_albedo.h, the estimator the furnace uses).
+    SampleWeightSums weights;
     std::vector<StabilityQueryRecord> violations;
 };
 
@@ -424,6 +425,7 @@ void accumulate(CaseAccumulator& accumulator, const float* query, const float* r
     if (!(sample_pdf > 0.0f) || lobe_type == OPENPBR_LOBE_TYPE_NONE)
     {
         ++accumulator.invalid;
+        accumulator.weights.add(0.0, 0.0, 0.0);
         return;
     }
     if ((lobe_type & OPENPBR_LOBE_TYPE_SPECULAR) != 0u)
@@ -437,18 +439,14 @@ void accumulate(CaseAccumulator& accumulator, const float* query, const float* r
         ++accumulator.bad_directions;
         record_violation("sample direction of length " + std::to_string(length));
     }
-    double weight_max = 0.0;
+    // A non-finite channel is counted above and weighs 0 here, so it cannot hide the others.
+    double weight[3];
     for (int c = 0; c < 3; ++c)
     {
-        const double weight = double(result[10 + c]) + double(result[13 + c]);
-        if (std::isfinite(weight))
-        {
-            accumulator.sum[c] += weight;
-            accumulator.sum_squares[c] += weight * weight;
-            weight_max = std::max(weight_max, weight);
-        }
+        const double value = double(result[10 + c]) + double(result[13 + c]);
+        weight[c] = std::isfinite(value) ? value : 0.0;
     }
-    accumulator.max_weight = std::max(accumulator.max_weight, weight_max);
+    accumulator.weights.add(weight[0], weight[1], weight[2]);
 }
 
 StabilityCaseResult finish_case(const std::string& name, const CaseAccumulator& accumulator)
@@ -462,23 +460,22 @@ StabilityCaseResult finish_case(const std::string& name, const CaseAccumulator& 
     result.invalid_samples = accumulator.invalid;
     result.delta_samples = accumulator.delta;
     result.bad_directions = accumulator.bad_directions;
-    result.max_weight = accumulator.max_weight;
     result.violations = accumulator.violations;
     const double n = double(std::max<std::size_t>(accumulator.samples, 1));
     result.invalid_sample_fraction = double(accumulator.invalid) / n;
+    const DirectionalAlbedo estimate = directional_albedo_from_sums(accumulator.weights);
+    result.max_weight = estimate.max_weight_any_channel();
     int worst = 0;
     for (int c = 0; c < 3; ++c)
     {
-        result.mean_weight[c] = accumulator.sum[c] / n;
+        result.mean_weight[c] = estimate.mean[c];
         if (result.mean_weight[c] > result.mean_weight[worst])
         {
             worst = c;
         }
     }
     result.max_mean_weight = result.mean_weight[worst];
-    const double variance =
-        std::max(0.0, accumulator.sum_squares[worst] / n - result.mean_weight[worst] * result.mean_weight[worst]);
-    result.mean_weight_standard_error = std::sqrt(variance / n);
+    result.mean_weight_standard_error = estimate.standard_error[worst];
     return result;
 }
 
