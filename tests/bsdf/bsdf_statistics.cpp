@@ -7,6 +7,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <iomanip>
 #include <limits>
@@ -22,6 +23,13 @@ constexpr double kTwoPi = 2.0 * kPi;
 
 // SplitMix64 (host/support/random.h): turns consecutive seeds into unrelated 64-bit values.
 std::uint64_t mix_seed(const std::uint64_t x) { return openpbr::host::splitmix64(x); }
+
+// Point `index` of a shifted R3 sequence as the vec3 the samplers take.
+glm::vec3 point_of(const openpbr::host::ShiftedR3Sequence& sequence, const std::uint64_t index)
+{
+    const std::array<float, 3> u = sequence.point(index);
+    return glm::vec3(u[0], u[1], u[2]);
+}
 
 bool is_finite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 bool is_non_negative(const glm::vec3& v) { return v.x >= 0.0f && v.y >= 0.0f && v.z >= 0.0f; }
@@ -58,7 +66,7 @@ template <class Visit>
 void for_each_independent_sample(std::uint64_t seed, std::uint64_t chunk, std::uint64_t begin, std::uint64_t end,
                                  const Visit& visit)
 {
-    Pcg32 rng(mix_seed(seed), chunk);
+    RandomStream rng(mix_seed(seed), chunk);
     for (std::uint64_t i = begin; i < end; ++i)
     {
         const float u0 = rng.next_float();
@@ -91,64 +99,16 @@ std::string lobe_type_string(std::uint32_t lobe_type)
 // ------------------------------------------------------------------------------------------
 // Random numbers
 
-Pcg32::Pcg32(std::uint64_t seed, std::uint64_t stream) : state_(0), increment_((stream << 1u) | 1u)
+RandomStream::RandomStream(const std::uint64_t seed, const std::uint64_t stream)
 {
-    next_uint();
-    state_ += seed;
-    next_uint();
+    generator_.state = openpbr::host::splitmix64(seed) ^ openpbr::host::splitmix64(~stream);
 }
 
-std::uint32_t Pcg32::next_uint()
-{
-    const std::uint64_t old_state = state_;
-    state_ = old_state * 6364136223846793005ull + increment_;
-    const std::uint32_t xorshifted = static_cast<std::uint32_t>(((old_state >> 18u) ^ old_state) >> 27u);
-    const std::uint32_t rotation = static_cast<std::uint32_t>(old_state >> 59u);
-    return (xorshifted >> rotation) | (xorshifted << ((32u - rotation) & 31u));
-}
+std::uint32_t RandomStream::next_uint() { return static_cast<std::uint32_t>(generator_.next_bits() >> 32); }
 
-float Pcg32::next_float() { return static_cast<float>(next_uint() >> 8) * 0x1.0p-24f; }
+float RandomStream::next_float() { return openpbr::host::unit_float_from_bits(generator_.next_bits()); }
 
-double Pcg32::next_double()
-{
-    const std::uint64_t high = next_uint() >> 5;  // 27 bits
-    const std::uint64_t low = next_uint() >> 6;   // 26 bits
-    return static_cast<double>((high << 26) | low) * 0x1.0p-53;
-}
-
-KroneckerSequence::KroneckerSequence(std::uint64_t seed) : shift_{0.0, 0.0, 0.0}
-{
-    Pcg32 rng(mix_seed(seed), 0x5eed);
-    for (double& s : shift_)
-    {
-        s = rng.next_double();
-    }
-}
-
-glm::vec3 KroneckerSequence::at(std::uint64_t index) const
-{
-    // g: the real root of g^4 = g + 1 (Newton from 1.2).
-    static const double g = [] {
-        double x = 1.2;
-        for (int i = 0; i < 50; ++i)
-        {
-            x -= (x * x * x * x - x - 1.0) / (4.0 * x * x * x - 1.0);
-        }
-        return x;
-    }();
-    static const double alpha[3] = {1.0 / g, 1.0 / (g * g), 1.0 / (g * g * g)};
-    glm::vec3 u;
-    for (int k = 0; k < 3; ++k)
-    {
-        // index * alpha exactly split into integer and fractional parts: index < 2^53 is
-        // exact in double, and fmod keeps only the fraction that matters.
-        const double product = std::fmod(static_cast<double>(index) * alpha[k], 1.0);
-        double x = shift_[k] + product;
-        x -= std::floor(x);
-        u[k] = to_unit_float(x);
-    }
-    return u;
-}
+double RandomStream::next_double() { return generator_.next_double(); }
 
 float to_unit_float(double x)
 {
@@ -212,7 +172,7 @@ double delta_probability_with(const OpenPBR_PreparedBsdf& bsdf, double transmiss
 bool refracted_lobe_axis(const SamplingTarget& target, std::uint32_t lobe_id, std::uint64_t seed, glm::dvec3& axis,
                          double& median_angle)
 {
-    Pcg32 rng(mix_seed(seed), 0x9170u);
+    RandomStream rng(mix_seed(seed), 0x9170u);
     std::vector<glm::dvec3> directions;
     glm::dvec3 sum(0.0);
     for (int draw = 0; draw < 65536 && directions.size() < 4096; ++draw)
@@ -1004,7 +964,7 @@ ConsistencyResult check_sample_consistency(const SamplingTarget& target, const C
 {
     const ChunkPlan plan = plan_chunks(options.sample_count);
     std::vector<ConsistencyResult> partial(plan.chunks);
-    const KroneckerSequence sequence(options.seed);
+    const openpbr::host::ShiftedR3Sequence sequence(options.seed);
     parallel_for_index(plan.chunks, [&](std::uint64_t chunk) {
         ConsistencyResult& r = partial[chunk];
         const auto fail = [&](std::uint64_t& counter, const std::string& what, const glm::vec3& u, const DirectionSample& s,
@@ -1103,7 +1063,7 @@ ConsistencyResult check_sample_consistency(const SamplingTarget& target, const C
         {
             for (std::uint64_t i = plan.begin(chunk); i < plan.end(chunk); ++i)
             {
-                visit(i, sequence.at(i));
+                visit(i, point_of(sequence, i));
             }
         }
     });
@@ -1158,14 +1118,14 @@ AlbedoEstimate estimate_albedo(const SamplingTarget& target, std::uint64_t sampl
     }
     else
     {
-        // Randomized QMC: independent replicas, each a shifted Kronecker sequence.
+        // Randomized QMC: independent replicas, each a shifted R3 sequence.
         const int r = std::max(replicas, 2);
         const std::uint64_t per_replica = std::max<std::uint64_t>(1, sample_count / static_cast<std::uint64_t>(r));
         std::vector<openpbr::host::SampleWeightSums> partial(static_cast<std::size_t>(r));
         parallel_for_index(static_cast<std::uint64_t>(r), [&](std::uint64_t replica) {
-            const KroneckerSequence sequence(mix_seed(seed) ^ (replica * 0x9e3779b97f4a7c15ull));
+            const openpbr::host::ShiftedR3Sequence sequence(mix_seed(seed) ^ (replica * 0x9e3779b97f4a7c15ull));
             openpbr::host::accumulate_sample_weights(partial[replica], 0, per_replica,
-                                                     [&](std::uint64_t i) { return weight_of(sequence.at(i)); });
+                                                     [&](std::uint64_t i) { return weight_of(point_of(sequence, i)); });
         });
         albedo = openpbr::host::directional_albedo_from_replicas(partial);
     }
@@ -1185,7 +1145,7 @@ ReciprocityResult check_reciprocity(const LobeFunction& f, std::uint64_t pair_co
 {
     ReciprocityResult result;
     result.pair_count = pair_count;
-    Pcg32 rng(mix_seed(seed), 11);
+    RandomStream rng(mix_seed(seed), 11);
     const auto random_direction = [&](bool full_sphere) {
         const double z = full_sphere ? 2.0 * rng.next_double() - 1.0 : rng.next_double();
         const double phi = kTwoPi * rng.next_double();

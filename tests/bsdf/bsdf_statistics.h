@@ -6,7 +6,7 @@
 // lobes and to the full BSDF alike.
 //
 // What is provided:
-//  - random numbers: Pcg32 (independent samples) and a randomly shifted Kronecker sequence
+//  - random numbers: RandomStream (independent samples, SplitMix64) and the shifted R3 sequence
 //    (low discrepancy, for integration only: its points are not independent, so chi-square
 //    p-values computed from it would be meaningless);
 //  - run_chi_square_test: goodness of fit of sample() against pdf() over the full sphere, with
@@ -22,6 +22,8 @@
 #ifndef OPENPBR_TESTS_BSDF_STATISTICS_H
 #define OPENPBR_TESTS_BSDF_STATISTICS_H
 
+#include "host/support/directional_albedo.h"
+#include "host/support/random.h"
 #include "slang/openpbr.h"
 
 #include <cstdint>
@@ -35,12 +37,15 @@ namespace openpbr::testing {
 // ------------------------------------------------------------------------------------------
 // Random numbers
 
-// PCG32 (O'Neill 2014): 64-bit LCG state, 32-bit xorshift-rotate output. Deterministic for a
-// (seed, stream) pair; different streams are independent sequences.
-class Pcg32
+// Independent uniform numbers: the host's one generator, SplitMix64 (host/support/random.h),
+// one stream per (seed, stream) pair, its state starting at splitmix64(seed) xor
+// splitmix64(~stream): different pairs start at unrelated points of the 2^64 cycle, so the
+// streams the tests draw (at most 2^32 numbers each) do not overlap in practice.
+class RandomStream
 {
   public:
-    explicit Pcg32(std::uint64_t seed = 0x853c49e6748fea9bull, std::uint64_t stream = 0xda3e39cb94b95bdbull);
+    explicit RandomStream(std::uint64_t seed = 0, std::uint64_t stream = 0);
+    // The top 32 bits of the next output.
     std::uint32_t next_uint();
     // Uniform in [0, 1), 24 random bits (every value exactly representable as a float).
     float next_float();
@@ -48,28 +53,17 @@ class Pcg32
     double next_double();
 
   private:
-    std::uint64_t state_;
-    std::uint64_t increment_;
+    host::SplitMix64 generator_;
 };
 
-// Kronecker (additive recurrence) sequence in [0, 1)^3 with the generalized golden ratio of
-// dimension 3: x_n = frac(shift + n (1/g, 1/g^2, 1/g^3)), g the real root of g^4 = g + 1.
-// The random shift (Cranley-Patterson rotation) makes independent replicas for error
-// estimates (randomized quasi-Monte Carlo).
-class KroneckerSequence
-{
-  public:
-    explicit KroneckerSequence(std::uint64_t seed);
-    glm::vec3 at(std::uint64_t index) const;
-
-  private:
-    double shift_[3];
-};
+// The low-discrepancy points of the tests are the accuracy study's: host::ShiftedR3Sequence
+// (host/support/directional_albedo.h), Roberts' R3 sequence with a random Cranley-Patterson
+// shift per seed, so independent replicas give randomized quasi-Monte Carlo error estimates.
 
 enum class SamplerKind
 {
-    independent,     // Pcg32
-    low_discrepancy  // shifted Kronecker sequence; integration only
+    independent,     // RandomStream
+    low_discrepancy  // host::ShiftedR3Sequence; integration only
 };
 
 // Float in [0, 1) from a double in [0, 1): rounding to nearest could otherwise give 1.0f.
@@ -307,7 +301,7 @@ struct AlbedoEstimate
 };
 
 // independent: standard error from the sample variance. low_discrepancy: `replicas`
-// independently shifted Kronecker sequences, standard error from the spread of their means.
+// independently shifted R3 sequences, standard error from the spread of their means.
 AlbedoEstimate estimate_albedo(const SamplingTarget& target, std::uint64_t sample_count, std::uint64_t seed,
                                SamplerKind sampler = SamplerKind::low_discrepancy, int replicas = 16);
 

@@ -133,10 +133,10 @@ class RandomMaterials
         return b;
     }
 
-    Pcg32& rng() { return rng_; }
+    RandomStream& rng() { return rng_; }
 
   private:
-    Pcg32 rng_;
+    RandomStream rng_;
 };
 
 bool finite_non_negative(const glm::vec3& v)

@@ -12,6 +12,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <functional>
 #include <sstream>
@@ -850,7 +851,7 @@ TEST(StatisticsMachinery, ConsistencyDetectsSmallWeightAndPdfErrors)
 
 TEST(StatisticsMachinery, RandomNumbersAreDeterministicAndUniform)
 {
-    Pcg32 a(42, 3), b(42, 3), c(42, 4);
+    RandomStream a(42, 3), b(42, 3), c(42, 4);
     bool differs = false;
     double sum = 0.0;
     for (int i = 0; i < 100000; ++i)
@@ -864,11 +865,12 @@ TEST(StatisticsMachinery, RandomNumbersAreDeterministicAndUniform)
     }
     EXPECT_TRUE(differs);
     EXPECT_NEAR(sum / 100000.0, 0.5, 0.005);
-    const KroneckerSequence sequence(5);
+    const openpbr::host::ShiftedR3Sequence sequence(5);
     glm::dvec3 mean(0.0);
     for (int i = 0; i < 4096; ++i)
     {
-        const glm::vec3 u = sequence.at(static_cast<std::uint64_t>(i));
+        const std::array<float, 3> point = sequence.point(static_cast<std::uint64_t>(i));
+        const glm::vec3 u(point[0], point[1], point[2]);
         ASSERT_TRUE(u.x >= 0.0f && u.x < 1.0f && u.y >= 0.0f && u.y < 1.0f && u.z >= 0.0f && u.z < 1.0f);
         mean += glm::dvec3(u);
     }

@@ -16,11 +16,11 @@
 namespace {
 
 using namespace openpbr;
-using openpbr::testing::Pcg32;
+using openpbr::testing::RandomStream;
 
 constexpr float kPiF = 3.14159265358979f;
 
-glm::vec3 random_direction(Pcg32& rng)
+glm::vec3 random_direction(RandomStream& rng)
 {
     const float z = 1.0f - 2.0f * rng.next_float();
     const float r = std::sqrt(std::max(0.0f, 1.0f - z * z));
@@ -30,7 +30,7 @@ glm::vec3 random_direction(Pcg32& rng)
 
 // A coated material on a random shading frame; the coat's own parameters random too, with the
 // range ends of weight and roughness among them.
-OpenPBR_ResolvedInputs random_coated_material(Pcg32& rng, const OpenPBR_Basis& frame)
+OpenPBR_ResolvedInputs random_coated_material(RandomStream& rng, const OpenPBR_Basis& frame)
 {
     OpenPBR_ResolvedInputs material = openpbr_make_default_resolved_inputs();
     material.base_color = glm::vec3(rng.next_float(), rng.next_float(), rng.next_float());
@@ -67,7 +67,7 @@ constexpr int kQueriesPerMaterial = 16;
 
 TEST(CoatFrame, FollowsBaseFrameWhenUnset)
 {
-    Pcg32 rng(20261125, 3);
+    RandomStream rng(20261125, 3);
     int compared = 0;
     for (int material_index = 0; material_index < kMaterialCount; ++material_index)
     {
@@ -100,7 +100,7 @@ TEST(CoatFrame, FollowsBaseFrameWhenUnset)
 // ignores geometry_basis) shades these materials differently.
 TEST(CoatFrame, PinnedCoatFrameIsDetected)
 {
-    Pcg32 rng(20261125, 5);
+    RandomStream rng(20261125, 5);
     int differing = 0;
     int compared = 0;
     for (int material_index = 0; material_index < 50; ++material_index)
