@@ -801,10 +801,14 @@ OPENPBR_FUNC OpenPBR_ThinFilmBasePair openpbr_thin_film_model_bases(OPENPBR_IN(O
 OPENPBR_FUNC vec3 openpbr_thin_film_fresnel_model(float cos_theta, float eta_outside, float eta_film, bool conductor,
                                                   float base_ior, vec3 base_n, vec3 base_k, float thickness_um)
 {
-    const OpenPBR_ThinFilmBasePair pair =
-        openpbr_thin_film_model_bases(openpbr_thin_film_inputs(cos_theta, eta_outside, eta_film, thickness_um), !conductor,
-                                      base_ior, conductor, base_n, base_k);
-    return conductor ? pair.conductor : pair.dielectric;
+#if OPENPBR_THIN_FILM_MODEL == OPENPBR_THIN_FILM_MODEL_FAST
+    return conductor
+               ? openpbr_thin_film_fresnel_conductor_fast(cos_theta, eta_outside, eta_film, base_n, base_k, thickness_um)
+               : openpbr_thin_film_fresnel_dielectric_fast(cos_theta, eta_outside, eta_film, base_ior, thickness_um);
+#else
+    return openpbr_thin_film_fresnel_full(cos_theta, eta_outside, eta_film, conductor, base_ior, base_n, base_k,
+                                          thickness_um);
+#endif
 }
 
 // ---- Metal IOR from artist colours ------------------------------------------------------------
