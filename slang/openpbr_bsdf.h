@@ -425,9 +425,21 @@ OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare_lobes_of(OPENPBR_IN(OpenPBR_Re
     else if (entering > 0.0f)
     {
         // Refraction into the interior: translucent and subsurface (the medium does the rest).
-        bsdf.transmission =
-            openpbr_transmission_lobe_prepare(inputs, under_specular * dielectric_weight, translucent, subsurface, alpha,
-                                              table_alpha, eta_channels, view, transmission_estimate, entering_slab_albedo);
+        vec3 reflected = vec3(0.0f);
+        bsdf.transmission = openpbr_transmission_lobe_prepare(inputs, under_specular * dielectric_weight, translucent,
+                                                              subsurface, alpha, table_alpha, eta_channels, view,
+                                                              transmission_estimate, entering_slab_albedo, reflected);
+        // What the compensation's floor keeps from the refraction reflects instead (see
+        // openpbr_transmission_lobe_prepare): the specular lobe's weight grows by that share of
+        // its albedo, per channel where it reflects at all (specular_color 0 reflects nothing).
+        if (max(reflected.x, max(reflected.y, reflected.z)) > 0.0f)
+        {
+            const vec3 reflecting = specular_albedo * dielectric_weight;
+            const vec3 takes = vec3(reflecting.x > 1e-4f ? 1.0f : 0.0f, reflecting.y > 1e-4f ? 1.0f : 0.0f,
+                                    reflecting.z > 1e-4f ? 1.0f : 0.0f);
+            bsdf.specular.weight *= vec3(1.0f) + takes * reflected / max(reflecting, vec3(1e-4f));
+            specular_albedo += takes * reflected / dielectric_weight;
+        }
     }
     if (max(diffuse_weight.x, max(diffuse_weight.y, diffuse_weight.z)) > 0.0f)
     {

@@ -58,11 +58,11 @@
 #include "math/openpbr_math.h"
 
 // Table sizes (the generator reads the same defines; every other file takes them from here),
-// e.g. 32 x 32 for the 2D table and 33 x 33 x 48 (u_mu, r, c_eta) for the 3D tables. The eta
+// e.g. 128 x 128 for the 2D table and 33 x 33 x 48 (u_mu, r, c_eta) for the 3D tables. The eta
 // size is even: two halves, eta < 1 and eta > 1, each ending in its own node at eta = 1 (the
 // albedos are not smooth across eta = 1, and interpolation never mixes the two sides).
 #ifndef OPENPBR_LUT_2D_SIZE
-#define OPENPBR_LUT_2D_SIZE 32
+#define OPENPBR_LUT_2D_SIZE 128
 #endif
 #ifndef OPENPBR_LUT_3D_SIZE
 #define OPENPBR_LUT_3D_SIZE 33
@@ -549,7 +549,7 @@ OPENPBR_FUNC float openpbr_lut_4d(int offset, float mu, float r, float a, float 
 
 // OPENPBR_COMPENSATION_ANALYTIC: least-squares fit of table 0 by a polynomial of total degree
 // 4 in (m, r) = (sqrt(mu), sqrt(alpha)), the table's own axes, sum of c_ij m^i r^j. Fitted to
-// the shipped 32 x 32 table (max error 0.094, mean 0.012 over its nodes; the largest errors at
+// the 32 x 32 table shipped until 2026-11-25 (max error 0.094, mean 0.012 over its nodes; the largest errors at
 // grazing views, mu < 0.01).
 OPENPBR_FUNC float openpbr_ggx_albedo_fit(float mu, float alpha)
 {
@@ -580,10 +580,23 @@ OPENPBR_FUNC float openpbr_ggx_albedo(float mu, float alpha)
 #endif
 }
 
-// Directional albedo of GGX reflection off a dielectric of relative IOR eta (single scattering).
-OPENPBR_FUNC float openpbr_dielectric_reflection_albedo(float mu, float alpha, float eta)
+// Directional albedo of GGX reflection off a dielectric of relative IOR eta (single scattering):
+// E_R = F_avg E_ggx, table 1's Fresnel factor averaged over the reflected light times table 0's
+// F = 1 albedo (in every compensation mode: E_R is the layering weight 1 - E_R of the spec's
+// albedo scaling, not a compensation). Why a product: at grazing views a near-mirror lobe's
+// shadowing changes on the scale mu ~ alpha, which a 33 x 33 (view, roughness) grid does not
+// resolve (E_R of eta 1.5, roughness 0.05 at view cos 0.02 interpolated 0.8632 against 0.8772;
+// now 0.8713); the shadowing largely cancels in F_avg, and table 0's finer grid carries it.
+// F_avg = E_R / E_ggx alone: callers that hold E_ggx already (openpbr_ggx_lobe_albedo) multiply.
+OPENPBR_FUNC float openpbr_dielectric_fresnel_average(float mu, float alpha, float eta)
 {
     return openpbr_lut_3d(OPENPBR_LUT_DIELECTRIC_REFLECTION_OFFSET, mu, alpha, eta);
+}
+OPENPBR_FUNC float openpbr_dielectric_reflection_albedo(float mu, float alpha, float eta)
+{
+    return openpbr_dielectric_fresnel_average(mu, alpha, eta) * openpbr_lut_2d(OPENPBR_LUT_GGX_ALBEDO_OFFSET,
+                                                                               openpbr_lut_mu_coordinate(mu),
+                                                                               openpbr_lut_roughness_coordinate(alpha));
 }
 
 // Smallest E_T0 the transmission compensation 1 / E_T0 divides by, e.g. 1e-3. Below eta = 1
@@ -617,7 +630,10 @@ OPENPBR_FUNC float openpbr_dielectric_interface_albedo(float mu, float alpha, fl
     OPENPBR_UNUSED(eta);
     return 1.0f;
 #else
-    return openpbr_lut_3d(OPENPBR_LUT_DIELECTRIC_INTERFACE_OFFSET, mu, alpha, eta);
+    // E_RT = (E_RT / E_ggx) E_ggx, like E_R (openpbr_dielectric_reflection_albedo).
+    return openpbr_lut_3d(OPENPBR_LUT_DIELECTRIC_INTERFACE_OFFSET, mu, alpha, eta) *
+           openpbr_lut_2d(OPENPBR_LUT_GGX_ALBEDO_OFFSET, openpbr_lut_mu_coordinate(mu),
+                          openpbr_lut_roughness_coordinate(alpha));
 #endif
 }
 

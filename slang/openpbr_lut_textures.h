@@ -30,7 +30,7 @@
 // on many GPUs; docs/accuracy-vs-time.md "Texture tables").
 //
 //   id                                         dim  size (x, y, z)    axes (x, y, z)            flat offset
-//   OPENPBR_LUT_TEXTURE_GGX_ALBEDO          0   2D  32 x 32           c_mu, c_r OPENPBR_LUT_GGX_ALBEDO_OFFSET
+//   OPENPBR_LUT_TEXTURE_GGX_ALBEDO          0   2D  128 x 128         c_mu, c_r OPENPBR_LUT_GGX_ALBEDO_OFFSET
 //   OPENPBR_LUT_TEXTURE_DIELECTRIC_REFLECTION 1 3D  33 x 33 x 48      u_mu, c_r, c_eta
 //   OPENPBR_LUT_DIELECTRIC_REFLECTION_OFFSET OPENPBR_LUT_TEXTURE_DIELECTRIC_TRANSMISSION 2 3D 33 x 33 x 48     u_mu, c_r,
 //   c_eta          OPENPBR_LUT_DIELECTRIC_TRANSMISSION_OFFSET OPENPBR_LUT_TEXTURE_DIELECTRIC_INTERFACE 3  3D  33 x 33 x 48

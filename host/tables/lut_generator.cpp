@@ -406,6 +406,12 @@ double estimate_entry(const int table, const double mu_value, const double alpha
         const vec2 u(bits_to_unit_float(reverse_bits(i) ^ shift_x), bits_to_unit_float(sobol_second_dimension(i) ^ shift_y));
         const vec3 h = openpbr_sample_vndf_spherical_cap(cell.view, cell.alpha, u);
         sum += double(sample_weight(cell, h));
+        if (table == lut_table_dielectric_reflection || table == lut_table_dielectric_interface)
+        {
+            // Tables 1 and 3 divide by the F = 1 reflection albedo of the same lobe, from the
+            // same points (errors correlated, so they largely cancel in the quotient).
+            isotropic_sum += double(reflection_weight(cell, h));
+        }
         if (table == lut_table_ggx_anisotropy_ratio)
         {
             // The same points for both lobes: their errors are correlated and largely cancel in
@@ -417,6 +423,14 @@ double estimate_entry(const int table, const double mu_value, const double alpha
     if (table == lut_table_ggx_anisotropy_ratio)
     {
         return isotropic_sum > 0.0 ? sum / isotropic_sum : 1.0;
+    }
+    if (table == lut_table_dielectric_reflection || table == lut_table_dielectric_interface)
+    {
+        // No reflected light at all (not reached for views the tables hold): the Fresnel
+        // factor of the view itself, or 1.
+        const double fallback =
+            table == lut_table_dielectric_reflection ? double(openpbr_fresnel_dielectric(cell.view.z, cell.eta)) : 1.0;
+        return isotropic_sum > 0.0 ? sum / isotropic_sum : fallback;
     }
     return sum / double(samples);
 }

@@ -232,6 +232,21 @@ OPENPBR_FUNC OpenPBR_GgxLobeAlbedo openpbr_ggx_lobe_albedo(float roughness, floa
     return result;
 }
 
+// E_R of a rough dielectric reflection lobe of relative IOR eta (single scattering), with the
+// anisotropy correction of lobe_albedo: F_avg at the projected alpha times E_ggx (slang/
+// openpbr_lut.h, openpbr_dielectric_reflection_albedo). Under table compensation
+// lobe_albedo.albedo is that E_ggx already (E_ggx(reflection_alpha) x reflection_scale), so
+// the 2D look-up is not repeated; the other modes read the table's E_ggx themselves.
+OPENPBR_FUNC float openpbr_ggx_lobe_dielectric_reflection_albedo(float mu, float eta,
+                                                                 OPENPBR_IN(OpenPBR_GgxLobeAlbedo) lobe_albedo)
+{
+#if OPENPBR_COMPENSATION_MODE == OPENPBR_COMPENSATION_TABLE
+    return openpbr_dielectric_fresnel_average(mu, lobe_albedo.reflection_alpha, eta) * lobe_albedo.albedo;
+#else
+    return openpbr_dielectric_reflection_albedo(mu, lobe_albedo.reflection_alpha, eta) * lobe_albedo.reflection_scale;
+#endif
+}
+
 // Mean change F_film - F_plain of the Fresnel factor over the light a GGX reflection lobe
 // reflects at this view: a fixed 4-point quadrature over the visible normals (a rank-1 lattice
 // through the spherical-cap sampler, each point weighted by the reflected fraction
@@ -299,8 +314,7 @@ OPENPBR_FUNC OpenPBR_MicrofacetReflectionLobe openpbr_coat_lobe_prepare(OPENPBR_
         coat_compensation * (layer_weight * inputs.coat_weight), coat_alpha, coat_fresnel, OPENPBR_LOBE_ID_COAT, 1.0f, view);
     const float coat_single_albedo =
         coat.is_delta ? openpbr_fresnel_dielectric(coat_mu, coat_eta)
-                      : openpbr_dielectric_reflection_albedo(coat_mu, coat_lobe_albedo.reflection_alpha, coat_eta) *
-                            coat_lobe_albedo.reflection_scale;
+                      : openpbr_ggx_lobe_dielectric_reflection_albedo(coat_mu, coat_eta, coat_lobe_albedo);
     albedo = vec3(min(coat_single_albedo * coat_compensation.x, 1.0f));
     return coat;
 }
@@ -329,10 +343,8 @@ OPENPBR_FUNC OpenPBR_MicrofacetReflectionLobe openpbr_specular_reflection_lobe_p
     const vec3 specular_compensation =
         openpbr_multiple_scattering_compensation(vec3(openpbr_dielectric_f0(eta_channels.y)), base_lobe_albedo.albedo);
     const float plain_reflection_albedo =
-        openpbr_ggx_is_delta(alpha)
-            ? openpbr_fresnel_dielectric(mu, eta_channels.y)
-            : openpbr_dielectric_reflection_albedo(mu, base_lobe_albedo.reflection_alpha, eta_channels.y) *
-                  base_lobe_albedo.reflection_scale;
+        openpbr_ggx_is_delta(alpha) ? openpbr_fresnel_dielectric(mu, eta_channels.y)
+                                    : openpbr_ggx_lobe_dielectric_reflection_albedo(mu, eta_channels.y, base_lobe_albedo);
     // With a film, E[f^R] moves by the film's change of the Fresnel factor averaged over the
     // lobe, times the lobe's F = 1 albedo (the tables hold no film): exact for a mirror.
     vec3 reflection_albedo = vec3(plain_reflection_albedo);

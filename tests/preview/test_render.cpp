@@ -311,12 +311,12 @@ std::vector<RenderCell> white_nested_cells(float roughness)
 // cells): glass of water 1.00000, air bubble in water 0.99950 (standard error 1.1e-4: paths
 // trapped between the bubble and the water's surface reach the cap), glass in water 0.99995.
 // Bounds: a loss of at most 0.2 % (four times the largest measured).
-// Rough (roughness 0.2): the relative IORs below 1 (water seen from glass 0.875, air seen from
-// water 0.75) are where the rough dielectric BSDF itself loses energy (README "Known limits";
-// `openpbr furnace` measures the single interface). Measured: glass of water 0.9688, air
-// bubble in water 0.9719, glass in water (relative IOR 1.14) 0.99995, standard errors <= 1e-3
-// (0.9640, 0.9700 and 0.9990 at 256 spp on 40-pixel cells). Bounds: a loss of at most 5 %,
-// above the largest measured 3.6 %.
+// Rough (roughness 0.2): below relative IOR 1 (water seen from glass 0.875, air seen from water
+// 0.75) the few transmitting microfacets carry large sample weights (README "Known limits"), so
+// these estimates are noisy. Measured: glass of water 1.0071 +- 0.014, air bubble in water
+// 0.9984 +- 0.0015, glass in water (relative IOR 1.14) 0.99996 +- 0.00055 (they were 0.9688 and
+// 0.9719 before the light the transmission compensation's floor keeps went to reflection).
+// Bound: the sweep's 0.99 within 3 standard errors.
 // Both: no gain beyond 3 standard errors (plus 1e-6 for float sums).
 TEST_P(NestedMedia, FurnaceKeepsEnergy)
 {
@@ -333,7 +333,14 @@ TEST_P(NestedMedia, FurnaceKeepsEnergy)
         std::printf("[ nested ] furnace %s (%s): %.5f, standard error %.2g\n", name.c_str(), to_string(GetParam()),
                     result.mean, result.standard_error);
         EXPECT_LE(result.mean, 1.0 + 3.0 * result.standard_error + 1e-6) << name;
-        EXPECT_GE(result.mean, cell < smooth_count ? 0.998 : 0.95) << name;
+        if (cell < smooth_count)
+        {
+            EXPECT_GE(result.mean, 0.998) << name;
+        }
+        else
+        {
+            EXPECT_GE(result.mean + 3.0 * result.standard_error, 0.99) << name;
+        }
     }
 }
 
