@@ -57,6 +57,26 @@ OpenPBR_Basis tilted_basis()
 
 OpenPBR_ResolvedInputs defaults() { return openpbr_make_default_resolved_inputs(); }
 
+// The rough dielectric at relative IORs 0.67, 0.99, 1 (index-matched, a delta pass-through),
+// 1.01 and 1.5, entering and leaving, in a medium of IOR `exterior` (specular_ior = relative
+// IOR x exterior).
+MaterialConfig rough_dielectric_through_one(const std::string& name, const float roughness, const float exterior)
+{
+    MaterialConfig config{name, [roughness] {
+                              OpenPBR_ResolvedInputs i = defaults();
+                              i.transmission_weight = 1.0f;
+                              i.specular_roughness = roughness;
+                              return i;
+                          }};
+    config.sides = {Side::outside, Side::inside};
+    for (const float relative : {0.67f, 0.99f, 1.0f, 1.01f, 1.5f})
+    {
+        config.ior_variants.push_back(relative * exterior);
+    }
+    config.exterior_ior = exterior;
+    return config;
+}
+
 const std::vector<MaterialConfig>& material_configs()
 {
     static const std::vector<MaterialConfig> configs = {
@@ -156,45 +176,11 @@ const std::vector<MaterialConfig>& material_configs()
         // seen from inside at 1.01, where rough Fresnel reflections add to the totally reflecting
         // microfacets), at view cos 0.5 it is rough and 1.6e-3 rad wide, the narrowest rough
         // refraction tested.
-        {"rough_dielectric_relative_ior",
-         [] {
-             OpenPBR_ResolvedInputs i = defaults();
-             i.transmission_weight = 1.0f;
-             i.specular_roughness = 0.5f;
-             return i;
-         },
-         {Side::outside, Side::inside},
-         {0.67f, 0.99f, 1.0f, 1.01f, 1.5f}},
-        {"rough_dielectric_relative_ior_roughness_0p2",
-         [] {
-             OpenPBR_ResolvedInputs i = defaults();
-             i.transmission_weight = 1.0f;
-             i.specular_roughness = 0.2f;
-             return i;
-         },
-         {Side::outside, Side::inside},
-         {0.67f, 0.99f, 1.0f, 1.01f, 1.5f}},
+        rough_dielectric_through_one("rough_dielectric_relative_ior", 0.5f, 1.0f),
+        rough_dielectric_through_one("rough_dielectric_relative_ior_roughness_0p2", 0.2f, 1.0f),
         // ... and in water: specular_ior = relative IOR x 1.33.
-        {"rough_dielectric_relative_ior_in_water",
-         [] {
-             OpenPBR_ResolvedInputs i = defaults();
-             i.transmission_weight = 1.0f;
-             i.specular_roughness = 0.5f;
-             return i;
-         },
-         {Side::outside, Side::inside},
-         {0.67f * 1.33f, 0.99f * 1.33f, 1.33f, 1.01f * 1.33f, 1.5f * 1.33f},
-         1.33f},
-        {"rough_dielectric_relative_ior_roughness_0p2_in_water",
-         [] {
-             OpenPBR_ResolvedInputs i = defaults();
-             i.transmission_weight = 1.0f;
-             i.specular_roughness = 0.2f;
-             return i;
-         },
-         {Side::outside, Side::inside},
-         {0.67f * 1.33f, 0.99f * 1.33f, 1.33f, 1.01f * 1.33f, 1.5f * 1.33f},
-         1.33f},
+        rough_dielectric_through_one("rough_dielectric_relative_ior_in_water", 0.5f, 1.33f),
+        rough_dielectric_through_one("rough_dielectric_relative_ior_roughness_0p2_in_water", 0.2f, 1.33f),
         {"smooth_glass",
          [] {
              OpenPBR_ResolvedInputs i = defaults();
