@@ -284,7 +284,10 @@ OPENPBR_FUNC float openpbr_dielectric_compensation_albedo(float mu, float table_
 // and the caller hands the rest to the specular reflection (openpbr_prepare_lobes_of): light
 // that meets a totally reflecting microsurface several times leaves it by reflection. Without
 // it the white furnace of relative IOR 0.67, roughness 0.2 at view cos 0.02 lost 0.039 (E_T0
-// 6e-4) and 0.5 at cos 0.1 lost 0.017. `albedo` and `slab_albedo` exclude that share.
+// 6e-4) and 0.5 at cos 0.1 lost 0.017. `slab_albedo` excludes that share; `albedo`, the
+// lobe's selection estimate, keeps it, so a refracted sample weighs at most about
+// (1 - E_R) / OPENPBR_MIN_TRANSMISSION_ALBEDO (selecting by the carried share E_T0 / floor made
+// weights grow like 1 / E_T0: 1.7e4 found by the fuzzer).
 OPENPBR_FUNC OpenPBR_DielectricLobe openpbr_transmission_lobe_prepare(OPENPBR_IN(OpenPBR_ResolvedInputs) inputs,
                                                                       vec3 layer_weight, float translucent, float subsurface,
                                                                       vec2 alpha, float table_alpha, vec3 eta_channels,
@@ -307,7 +310,7 @@ OPENPBR_FUNC OpenPBR_DielectricLobe openpbr_transmission_lobe_prepare(OPENPBR_IN
                            ? 1.0f - max(openpbr_dielectric_transmission_albedo(mu, table_alpha, eta_channels.y), 0.0f) /
                                         OPENPBR_MIN_TRANSMISSION_ALBEDO
                            : 0.0f;
-    albedo = transmission_weight * (1.0f - kept);
+    albedo = transmission_weight;
     slab_albedo = layer_weight * (translucent * translucent_tint + subsurface * inputs.subsurface_color) * (1.0f - kept);
     reflected = layer_weight * ((translucent + subsurface) * kept);
     return openpbr_dielectric_lobe_init(vec3(0.0f), transmission_weight * (1.0f / compensation_albedo), alpha, eta_channels,

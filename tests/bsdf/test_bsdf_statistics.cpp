@@ -450,7 +450,7 @@ TEST_P(WhiteFurnace, Albedo)
     // per sample (standard error 1e-4 to 6e-4 at 2^14 where the interface keeps its energy), and
     // its band is 0.015 wide, so a target of 1e-3 (3 se inside a fifth of the band) suffices.
     // The sweep draws independent samples, up to 2^24: below relative IOR 1 seen from outside
-    // the few microfacets that transmit carry weights up to 2700 (about 1e-4 of the samples),
+    // the few microfacets that transmit carry weights up to 1000 (about 1e-4 of the samples),
     // which the shifted R3 replicas under-sample while their spread stays small (relative IOR
     // 0.67, roughness 0.2, view cos 0.1: 0.9265 +- 0.0005 from 2^22 R3 points against 0.9989
     // +- 0.0016 from 2^24 independent ones and 0.9974 +- 0.0063 from the furnace command's 2^20).
@@ -478,7 +478,7 @@ TEST_P(WhiteFurnace, Albedo)
         // reach a few 1e-3.
         // A relative IOR below 1 seen from outside hands the light that the mostly totally
         // reflecting interface does not reflect, 1 - E_R, to the few microfacets that transmit,
-        // weight (1 - E_R) / E_T0 (up to 2700, OPENPBR_MIN_TRANSMISSION_ALBEDO): measured
+        // weight (1 - E_R) / E_T0 (up to 1000, OPENPBR_MIN_TRANSMISSION_ALBEDO): measured
         // standard errors up to 0.009 at 65536 samples (relative IOR 0.67, roughness 0.5, view
         // cos 0.1) and 0.0018 at 2^24 (0.5, roughness 0.2, cos 0.1), so those sweep rows get 3e-3.
         const double max_standard_error = c.view_cos >= host::furnace_tolerance_min_cos ? (sweep ? 3e-3 : 1e-3) : 5e-3;
