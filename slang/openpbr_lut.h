@@ -564,6 +564,14 @@ OPENPBR_FUNC float openpbr_ggx_albedo_fit(float mu, float alpha)
     return clamp(m0 + m * (m1 + m * (m2 + m * (m3 + m * m4))), 0.0f, 1.0f);
 }
 
+// Table 0 itself, E_ggx(mu, alpha), whatever the compensation mode: the factor of E_R and E_RT
+// (openpbr_dielectric_reflection_albedo) as well as the table mode's openpbr_ggx_albedo.
+OPENPBR_FUNC float openpbr_tabulated_ggx_albedo(float mu, float alpha)
+{
+    return openpbr_lut_2d(OPENPBR_LUT_GGX_ALBEDO_OFFSET, openpbr_lut_mu_coordinate(mu),
+                          openpbr_lut_roughness_coordinate(alpha));
+}
+
 // Directional albedo of GGX reflection with F = 1 (single scattering); 1 under
 // OPENPBR_COMPENSATION_NONE, the fit under OPENPBR_COMPENSATION_ANALYTIC.
 OPENPBR_FUNC float openpbr_ggx_albedo(float mu, float alpha)
@@ -575,8 +583,7 @@ OPENPBR_FUNC float openpbr_ggx_albedo(float mu, float alpha)
 #elif OPENPBR_COMPENSATION_MODE == OPENPBR_COMPENSATION_ANALYTIC
     return openpbr_ggx_albedo_fit(mu, alpha);
 #else
-    return openpbr_lut_2d(OPENPBR_LUT_GGX_ALBEDO_OFFSET, openpbr_lut_mu_coordinate(mu),
-                          openpbr_lut_roughness_coordinate(alpha));
+    return openpbr_tabulated_ggx_albedo(mu, alpha);
 #endif
 }
 
@@ -594,9 +601,7 @@ OPENPBR_FUNC float openpbr_dielectric_fresnel_average(float mu, float alpha, flo
 }
 OPENPBR_FUNC float openpbr_dielectric_reflection_albedo(float mu, float alpha, float eta)
 {
-    return openpbr_dielectric_fresnel_average(mu, alpha, eta) * openpbr_lut_2d(OPENPBR_LUT_GGX_ALBEDO_OFFSET,
-                                                                               openpbr_lut_mu_coordinate(mu),
-                                                                               openpbr_lut_roughness_coordinate(alpha));
+    return openpbr_dielectric_fresnel_average(mu, alpha, eta) * openpbr_tabulated_ggx_albedo(mu, alpha);
 }
 
 // Smallest E_T0 the transmission compensation 1 / E_T0 divides by, e.g. 1e-3. Below eta = 1
@@ -631,9 +636,7 @@ OPENPBR_FUNC float openpbr_dielectric_interface_albedo(float mu, float alpha, fl
     return 1.0f;
 #else
     // E_RT = (E_RT / E_ggx) E_ggx, like E_R (openpbr_dielectric_reflection_albedo).
-    return openpbr_lut_3d(OPENPBR_LUT_DIELECTRIC_INTERFACE_OFFSET, mu, alpha, eta) *
-           openpbr_lut_2d(OPENPBR_LUT_GGX_ALBEDO_OFFSET, openpbr_lut_mu_coordinate(mu),
-                          openpbr_lut_roughness_coordinate(alpha));
+    return openpbr_lut_3d(OPENPBR_LUT_DIELECTRIC_INTERFACE_OFFSET, mu, alpha, eta) * openpbr_tabulated_ggx_albedo(mu, alpha);
 #endif
 }
 
