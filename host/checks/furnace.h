@@ -42,6 +42,9 @@ struct FurnaceConfig
     std::vector<FurnaceSide> sides = {FurnaceSide::outside};
     // IOR of the medium around the surface (openpbr_prepare's exterior_ior), e.g. 1.33 in water.
     float exterior_ior = 1.0f;
+    // Wavelengths (nm) of the RGB channels passed to openpbr_prepare, e.g. {1000, 550, 300} to
+    // spread a dispersive IOR over the widest range the input contract accepts.
+    vec3 wavelengths_nm = OPENPBR_DEFAULT_RGB_WAVELENGTHS_NM;
 };
 
 // The specification's list (white metal; white dielectric with diffuse, subsurface and
@@ -109,7 +112,8 @@ struct FurnaceEstimate
 // deterministic reduction, so the same seed gives the same bits on every run): the
 // host's one directional-albedo estimator (host/support/directional_albedo.h).
 FurnaceEstimate estimate_furnace_albedo(const OpenPBR_ResolvedInputs& inputs, const vec3& view_world, std::uint64_t samples,
-                                        std::uint64_t seed, float exterior_ior = 1.0f);
+                                        std::uint64_t seed, float exterior_ior = 1.0f,
+                                        const vec3& wavelengths_nm = OPENPBR_DEFAULT_RGB_WAVELENGTHS_NM);
 
 struct FurnaceOptions
 {

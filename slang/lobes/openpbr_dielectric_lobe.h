@@ -268,26 +268,51 @@ OPENPBR_FUNC float openpbr_dielectric_compensation_albedo(float mu, float table_
                        : max(openpbr_dielectric_transmission_albedo(mu, table_alpha, eta), OPENPBR_MIN_TRANSMISSION_ALBEDO);
 }
 
+// The compensation albedo per channel: a dispersive lobe refracts each channel with its own IOR,
+// so each channel is compensated by its own albedo (two more look-ups, only when dispersive).
+// One channel's albedo for all three let a channel that transmits much more than the green one
+// gain energy: relative IOR 1/3 (green, mostly total internal reflection, E_T0 at the floor)
+// against 0.996 (a 1000 nm channel at Abbe number 1) carried the red channel's 1 - E_R / 1e-3
+// instead of 1 - E_R, a sample weight of 1.4e4 (fuzz/corpus/finding_dispersive_channel_compensation.bin).
+OPENPBR_FUNC vec3 openpbr_dielectric_compensation_albedos(float mu, float table_alpha, vec3 eta, float lambda_view,
+                                                          bool from_inside)
+{
+    const float green = openpbr_dielectric_compensation_albedo(mu, table_alpha, eta.y, lambda_view, from_inside);
+    if (eta.x == eta.y && eta.y == eta.z)
+    {
+        return vec3(green);
+    }
+    return vec3(openpbr_dielectric_compensation_albedo(mu, table_alpha, eta.x, lambda_view, from_inside), green,
+                openpbr_dielectric_compensation_albedo(mu, table_alpha, eta.z, lambda_view, from_inside));
+}
+
+// The share of the refraction that the compensation's floor keeps from one channel (see
+// openpbr_transmission_lobe_prepare): 0 unless the floor holds, a second look-up only then.
+OPENPBR_FUNC float openpbr_transmission_floor_share(float mu, float table_alpha, float eta, float compensation_albedo)
+{
+    return eta != 1.0f && compensation_albedo <= OPENPBR_MIN_TRANSMISSION_ALBEDO
+               ? 1.0f - max(openpbr_dielectric_transmission_albedo(mu, table_alpha, eta), 0.0f) /
+                            OPENPBR_MIN_TRANSMISSION_ALBEDO
+               : 0.0f;
+}
+
 // OpenPBR 1.1 "Translucent base" and "Subsurface": refraction into the interior, the
 // transmission-only form. layer_weight is what passes the specular reflection per unit of
 // base, e.g. (1 - E[f^R_specular]) (1 - base_metalness); translucent and subsurface are the
 // shares of the two slabs light enters (their sum at most 1). The translucent share is tinted
 // by transmission_color when there is no medium (transmission_depth 0); otherwise, and for
 // subsurface, the interior medium applies the color. Compensated by 1 / E_T0 of the rough
-// lobe. `albedo` receives the weight the lobe refracts (its selection estimate);
-// `slab_albedo` the albedo the coat's darkening sees of the entering slabs: the subsurface
-// slab returns subsurface_color (spec "Subsurface": its multiple-scattering albedo), the
-// translucent slab its tint. `reflected` receives the share of layer_weight x (translucent +
-// subsurface) that the compensation's floor keeps from the refraction: where E_T0 lies below
-// OPENPBR_MIN_TRANSMISSION_ALBEDO (below relative IOR 1 seen from outside at grazing views,
-// where nearly every microfacet reflects totally) the lobe carries E_T0 / floor of 1 - E_R,
-// and the caller hands the rest to the specular reflection (openpbr_prepare_lobes_of): light
-// that meets a totally reflecting microsurface several times leaves it by reflection. Without
-// it the white furnace of relative IOR 0.67, roughness 0.2 at view cos 0.02 lost 0.039 (E_T0
-// 6e-4) and 0.5 at cos 0.1 lost 0.017. `slab_albedo` excludes that share; `albedo`, the
-// lobe's selection estimate, keeps it, so a refracted sample weighs at most about
-// (1 - E_R) / OPENPBR_MIN_TRANSMISSION_ALBEDO (selecting by the carried share E_T0 / floor made
-// weights grow like 1 / E_T0: 1.7e4 found by the fuzzer).
+// lobe, per channel where dispersion gives each channel its own IOR. `albedo` receives the weight the lobe refracts (its
+// selection estimate); `slab_albedo` the albedo the coat's darkening sees of the entering slabs: the subsurface slab returns
+// subsurface_color (spec "Subsurface": its multiple-scattering albedo), the translucent slab its tint. `reflected` receives
+// the share of layer_weight x (translucent + subsurface) that the compensation's floor keeps from the refraction: where E_T0
+// lies below OPENPBR_MIN_TRANSMISSION_ALBEDO (below relative IOR 1 seen from outside at grazing views, where nearly every
+// microfacet reflects totally) the lobe carries E_T0 / floor of 1 - E_R, and the caller hands the rest to the specular
+// reflection (openpbr_prepare_lobes_of): light that meets a totally reflecting microsurface several times leaves it by
+// reflection. Without it the white furnace of relative IOR 0.67, roughness 0.2 at view cos 0.02 lost 0.039 (E_T0 6e-4) and
+// 0.5 at cos 0.1 lost 0.017. `slab_albedo` excludes that share; `albedo`, the lobe's selection estimate, keeps it, so a
+// refracted sample weighs at most about (1 - E_R) / OPENPBR_MIN_TRANSMISSION_ALBEDO (selecting by the carried share E_T0 /
+// floor made weights grow like 1 / E_T0: 1.7e4 found by the fuzzer).
 OPENPBR_FUNC OpenPBR_DielectricLobe openpbr_transmission_lobe_prepare(OPENPBR_IN(OpenPBR_ResolvedInputs) inputs,
                                                                       vec3 layer_weight, float translucent, float subsurface,
                                                                       vec2 alpha, float table_alpha, vec3 eta_channels,
@@ -301,37 +326,42 @@ OPENPBR_FUNC OpenPBR_DielectricLobe openpbr_transmission_lobe_prepare(OPENPBR_IN
     // A delta lobe refracts exactly 1 - F: no compensation (the table near alpha = 0 smears
     // the step at the critical angle when eta < 1 and gained up to 115 % there).
     const bool is_delta = openpbr_ggx_is_delta(alpha);
-    const float compensation_albedo = is_delta
-                                          ? 1.0f
-                                          : openpbr_dielectric_compensation_albedo(mu, table_alpha, eta_channels.y,
-                                                                                   openpbr_ggx_lambda(view, alpha), false);
-    // The floor's share (0 unless the floor holds; a second look-up only then).
-    const float kept = !is_delta && eta_channels.y != 1.0f && compensation_albedo <= OPENPBR_MIN_TRANSMISSION_ALBEDO
-                           ? 1.0f - max(openpbr_dielectric_transmission_albedo(mu, table_alpha, eta_channels.y), 0.0f) /
-                                        OPENPBR_MIN_TRANSMISSION_ALBEDO
-                           : 0.0f;
+    vec3 compensation_albedo = vec3(1.0f);
+    vec3 kept = vec3(0.0f);
+    if (!is_delta)
+    {
+        compensation_albedo =
+            openpbr_dielectric_compensation_albedos(mu, table_alpha, eta_channels, openpbr_ggx_lambda(view, alpha), false);
+        const float kept_green = openpbr_transmission_floor_share(mu, table_alpha, eta_channels.y, compensation_albedo.y);
+        kept =
+            eta_channels.x == eta_channels.y && eta_channels.y == eta_channels.z
+                ? vec3(kept_green)
+                : vec3(openpbr_transmission_floor_share(mu, table_alpha, eta_channels.x, compensation_albedo.x), kept_green,
+                       openpbr_transmission_floor_share(mu, table_alpha, eta_channels.z, compensation_albedo.z));
+    }
     albedo = transmission_weight;
-    slab_albedo = layer_weight * (translucent * translucent_tint + subsurface * inputs.subsurface_color) * (1.0f - kept);
+    slab_albedo =
+        layer_weight * (translucent * translucent_tint + subsurface * inputs.subsurface_color) * (vec3(1.0f) - kept);
     reflected = layer_weight * ((translucent + subsurface) * kept);
-    return openpbr_dielectric_lobe_init(vec3(0.0f), transmission_weight * (1.0f / compensation_albedo), alpha, eta_channels,
-                                        false, OPENPBR_LOBE_ID_SPECULAR_TRANSMISSION, view);
+    return openpbr_dielectric_lobe_init(vec3(0.0f), transmission_weight / compensation_albedo, alpha, eta_channels, false,
+                                        OPENPBR_LOBE_ID_SPECULAR_TRANSMISSION, view);
 }
 
 // The dielectric interface seen from the denser side, inside a non-thin-walled object (eta
 // inverted): reflection and refraction with Fresnel and total internal reflection, compensated
-// by 1 / E_RT. layer_weight is the geometry opacity; exit_factor what light leaving crosses
-// above the interface (the coat once, the fuzz), applied to the refracted part only.
+// by 1 / E_RT (per channel where dispersion gives each channel its own IOR). layer_weight is the geometry opacity;
+// exit_factor what light leaving crosses above the interface (the coat once, the fuzz), applied to the refracted part only.
 OPENPBR_FUNC OpenPBR_DielectricLobe openpbr_interface_lobe_prepare(float layer_weight, vec3 exit_factor, vec2 alpha,
                                                                    float table_alpha, vec3 eta_channels, vec3 view)
 {
     const float mu = view.z;
     const vec3 eta_inside = vec3(1.0f) / eta_channels;
-    const float compensation = openpbr_ggx_is_delta(alpha)
-                                   ? 1.0f
-                                   : 1.0f / openpbr_dielectric_compensation_albedo(mu, table_alpha, eta_inside.y,
-                                                                                   openpbr_ggx_lambda(view, alpha), true);
-    const float weight = layer_weight * compensation;
-    return openpbr_dielectric_lobe_init(vec3(weight), exit_factor * weight, alpha, eta_inside, true,
+    const vec3 compensation_albedo =
+        openpbr_ggx_is_delta(alpha)
+            ? vec3(1.0f)
+            : openpbr_dielectric_compensation_albedos(mu, table_alpha, eta_inside, openpbr_ggx_lambda(view, alpha), true);
+    const vec3 weight = layer_weight / compensation_albedo;
+    return openpbr_dielectric_lobe_init(weight, exit_factor * weight, alpha, eta_inside, true,
                                         OPENPBR_LOBE_ID_INTERFACE_FROM_INSIDE, view);
 }
 

@@ -442,7 +442,7 @@ TEST_P(WhiteFurnace, Albedo)
     const FurnaceCase& c = GetParam();
     const OpenPBR_ResolvedInputs& inputs = c.config->inputs;
     const OpenPBR_PreparedBsdf bsdf = openpbr_prepare(inputs, host::furnace_view(inputs, c.view_cos, c.side),
-                                                      OPENPBR_DEFAULT_RGB_WAVELENGTHS_NM, c.config->exterior_ior);
+                                                      c.config->wavelengths_nm, c.config->exterior_ior);
     const bool sweep = c.config->expectation == host::FurnaceExpectation::relative_ior_sweep;
     // Deterministic sample-count escalation: 2^18 samples, 4x more while the standard error
     // exceeds kFurnaceTargetError (lobe selection makes some configurations noisy). The
