@@ -45,6 +45,9 @@ struct FurnaceConfig
     // Wavelengths (nm) of the RGB channels passed to openpbr_prepare, e.g. {1000, 550, 300} to
     // spread a dispersive IOR over the widest range the input contract accepts.
     vec3 wavelengths_nm = OPENPBR_DEFAULT_RGB_WAVELENGTHS_NM;
+    // View cosines of this configuration, e.g. {0.4409} for a view just past a critical angle;
+    // empty: white_furnace_view_cosines().
+    std::vector<float> view_cosines = {};
 };
 
 // The specification's list (white metal; white dielectric with diffuse, subsurface and
@@ -55,6 +58,8 @@ const std::vector<FurnaceConfig>& white_furnace_configs();
 // View cosines of the furnace, e.g. {1, 0.5, 0.1, 0.02, 0.001}: the tolerance applies from
 // 0.1 up, the no-gain bound everywhere.
 const std::vector<float>& white_furnace_view_cosines();
+// The view cosines a configuration is measured at: its own, or white_furnace_view_cosines().
+const std::vector<float>& furnace_view_cosines(const FurnaceConfig& config);
 
 // Tolerances of the white furnace: what a white, energy-conserving material must meet.
 constexpr double furnace_tolerance = 0.005;  // |1 - albedo| for cos >= furnace_tolerance_min_cos
@@ -78,10 +83,11 @@ bool furnace_albedo_passes(FurnaceExpectation expectation, float cos_theta, doub
 struct FurnaceKnownLimit
 {
     const char* row;  // configuration name with "_inside" for the inside view
-    float cos_theta;
+    float cos_theta;  // e.g. 0.02; any_view_cosine: every view cosine of the row
     double min_albedo;
     double max_albedo;
 };
+constexpr float any_view_cosine = -1.0f;
 const std::vector<FurnaceKnownLimit>& furnace_known_limits();
 
 // The band [min, max] a row is held to: its known limit where it has one, otherwise

@@ -422,7 +422,7 @@ std::vector<FurnaceCase> furnace_cases()
     {
         // Every row of the relative-IOR sweep included: a row outside the sweep's band is held
         // to its measured band of host::furnace_known_limits() (README "Known limits").
-        for (float view_cos : host::white_furnace_view_cosines())
+        for (float view_cos : host::furnace_view_cosines(config))
         {
             for (host::FurnaceSide side : config.sides)
             {
