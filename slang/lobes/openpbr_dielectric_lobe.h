@@ -64,6 +64,10 @@ struct OpenPBR_DielectricLobe
     uint lobe_id;
 };
 
+// Whether dispersion gives the channels different IORs (each channel then refracts, and is
+// compensated, with its own).
+OPENPBR_FUNC bool openpbr_channels_differ(vec3 eta) { return !(eta.x == eta.y && eta.y == eta.z); }
+
 // Width w_T (radians) of the refracted lobe at view cosine mu (see the header): |1 - 1/eta|
 // alpha / (mu^2 + alpha^2), the widest channel for a dispersive eta.
 OPENPBR_FUNC float openpbr_dielectric_transmission_width(vec2 alpha, vec3 eta, float mu)
@@ -85,7 +89,7 @@ OPENPBR_FUNC OpenPBR_DielectricLobe openpbr_dielectric_lobe_init(vec3 reflection
     lobe.transmission_is_delta =
         lobe.is_delta || openpbr_dielectric_transmission_width(alpha, eta, view.z) < OPENPBR_DELTA_ALPHA_THRESHOLD;
     lobe.with_fresnel = with_fresnel;
-    lobe.dispersive = !(eta.x == eta.y && eta.y == eta.z);
+    lobe.dispersive = openpbr_channels_differ(eta);
     lobe.eta = eta;
     lobe.lambda_view = openpbr_ggx_lambda(view, alpha);
     lobe.g1_view = 1.0f / (1.0f + lobe.lambda_view);
@@ -278,7 +282,7 @@ OPENPBR_FUNC vec3 openpbr_dielectric_compensation_albedos(float mu, float table_
                                                           bool from_inside)
 {
     const float green = openpbr_dielectric_compensation_albedo(mu, table_alpha, eta.y, lambda_view, from_inside);
-    if (eta.x == eta.y && eta.y == eta.z)
+    if (!openpbr_channels_differ(eta))
     {
         return vec3(green);
     }
@@ -294,6 +298,17 @@ OPENPBR_FUNC float openpbr_transmission_floor_share(float mu, float table_alpha,
                ? 1.0f - max(openpbr_dielectric_transmission_albedo(mu, table_alpha, eta), 0.0f) /
                             OPENPBR_MIN_TRANSMISSION_ALBEDO
                : 0.0f;
+}
+// The same per channel, like openpbr_dielectric_compensation_albedos.
+OPENPBR_FUNC vec3 openpbr_transmission_floor_shares(float mu, float table_alpha, vec3 eta, vec3 compensation_albedo)
+{
+    const float green = openpbr_transmission_floor_share(mu, table_alpha, eta.y, compensation_albedo.y);
+    if (!openpbr_channels_differ(eta))
+    {
+        return vec3(green);
+    }
+    return vec3(openpbr_transmission_floor_share(mu, table_alpha, eta.x, compensation_albedo.x), green,
+                openpbr_transmission_floor_share(mu, table_alpha, eta.z, compensation_albedo.z));
 }
 
 // OpenPBR 1.1 "Translucent base" and "Subsurface": refraction into the interior, the
@@ -332,12 +347,7 @@ OPENPBR_FUNC OpenPBR_DielectricLobe openpbr_transmission_lobe_prepare(OPENPBR_IN
     {
         compensation_albedo =
             openpbr_dielectric_compensation_albedos(mu, table_alpha, eta_channels, openpbr_ggx_lambda(view, alpha), false);
-        const float kept_green = openpbr_transmission_floor_share(mu, table_alpha, eta_channels.y, compensation_albedo.y);
-        kept =
-            eta_channels.x == eta_channels.y && eta_channels.y == eta_channels.z
-                ? vec3(kept_green)
-                : vec3(openpbr_transmission_floor_share(mu, table_alpha, eta_channels.x, compensation_albedo.x), kept_green,
-                       openpbr_transmission_floor_share(mu, table_alpha, eta_channels.z, compensation_albedo.z));
+        kept = openpbr_transmission_floor_shares(mu, table_alpha, eta_channels, compensation_albedo);
     }
     albedo = transmission_weight;
     slab_albedo =
