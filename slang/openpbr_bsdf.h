@@ -381,11 +381,27 @@ OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare_lobes_of(OPENPBR_IN(OpenPBR_Re
     // Absolute IORs: the film's Fresnel model reads n_outside, n_film and n_base themselves.
     const float film_outside_ior = coat_weight > 0.0f ? mix(exterior_ior, inputs.coat_ior, coat_weight) : exterior_ior;
     const float dielectric_weight = 1.0f - metalness;
+    // The film's lobe averages for both base factors at once (they share its evaluations).
+    // The lobes build their Fresnel structs again: a film-free material then pays for no copy.
+    OpenPBR_FresnelPair film_averages;
+    film_averages.first = vec3(0.0f);
+    film_averages.second = vec3(0.0f);
+    if (inputs.thin_film_weight > 0.0f)
+    {
+        OpenPBR_Fresnel metal_fresnel = openpbr_make_constant_fresnel(vec3(0.0f));
+        if (metalness > 0.0f)
+        {
+            metal_fresnel = openpbr_metal_fresnel(inputs, film_outside_ior);
+        }
+        film_averages =
+            openpbr_base_film_estimate(openpbr_specular_reflection_fresnel(inputs, eta_channels.y, film_outside_ior),
+                                       dielectric_weight > 0.0f, metal_fresnel, metalness > 0.0f, view, alpha);
+    }
     vec3 specular_albedo = vec3(0.0f);
     if (dielectric_weight > 0.0f)
     {
         bsdf.specular = openpbr_specular_reflection_lobe_prepare(inputs, eta_channels, alpha, base_lobe_albedo,
-                                                                 film_outside_ior, view, specular_albedo);
+                                                                 film_outside_ior, film_averages, view, specular_albedo);
     }
     const vec3 under_specular = vec3(1.0f) - specular_albedo;
 
@@ -450,7 +466,8 @@ OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare_lobes_of(OPENPBR_IN(OpenPBR_Re
     vec3 metal_albedo = vec3(0.0f);
     if (metalness > 0.0f)
     {
-        bsdf.metal = openpbr_metal_lobe_prepare(inputs, alpha, base_lobe_albedo, film_outside_ior, view, metal_albedo);
+        bsdf.metal =
+            openpbr_metal_lobe_prepare(inputs, alpha, base_lobe_albedo, film_outside_ior, film_averages, view, metal_albedo);
     }
 
     // Albedo estimates of the base lobes (unit layering factor).

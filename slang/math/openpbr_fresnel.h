@@ -187,10 +187,13 @@ struct OpenPBR_FresnelPair
     vec3 second;
 };
 
-OPENPBR_FUNC OpenPBR_FresnelPair openpbr_fresnel_evaluate_base_pair(OPENPBR_IN(OpenPBR_Fresnel) dielectric,
-                                                                    bool dielectric_active,
-                                                                    OPENPBR_IN(OpenPBR_Fresnel) metal, bool metal_active,
-                                                                    float cos_theta)
+// optical_path_spread_um: the film's path spread over the microfacets averaged at once
+// (OpenPBR_ThinFilmInputs), 0 for one microfacet (openpbr_fresnel_evaluate_base_pair).
+OPENPBR_FUNC OpenPBR_FresnelPair openpbr_fresnel_evaluate_base_pair_spread(OPENPBR_IN(OpenPBR_Fresnel) dielectric,
+                                                                           bool dielectric_active,
+                                                                           OPENPBR_IN(OpenPBR_Fresnel) metal,
+                                                                           bool metal_active, float cos_theta,
+                                                                           float optical_path_spread_um)
 {
     OpenPBR_FresnelPair pair;
     pair.first = vec3(0.0f);
@@ -209,11 +212,13 @@ OPENPBR_FUNC OpenPBR_FresnelPair openpbr_fresnel_evaluate_base_pair(OPENPBR_IN(O
     // openpbr_fresnel_evaluate. Both factors carry the same film (openpbr_add_thin_film).
     if (OPENPBR_FEATURE_THIN_FILM && (dielectric_filmed || metal_filmed))
     {
-        const OpenPBR_ThinFilmBasePair film = openpbr_thin_film_model_bases(
+        OpenPBR_ThinFilmInputs film_inputs =
             openpbr_thin_film_inputs(cos_theta, dielectric_filmed ? dielectric.outside_ior : metal.outside_ior,
                                      dielectric_filmed ? dielectric.film_ior : metal.film_ior,
-                                     dielectric_filmed ? dielectric.film_thickness_um : metal.film_thickness_um),
-            dielectric_filmed, dielectric.base_ior, metal_filmed, metal.base_n, metal.base_k);
+                                     dielectric_filmed ? dielectric.film_thickness_um : metal.film_thickness_um);
+        film_inputs.optical_path_spread_um = optical_path_spread_um;
+        const OpenPBR_ThinFilmBasePair film = openpbr_thin_film_model_bases(
+            film_inputs, dielectric_filmed, dielectric.base_ior, metal_filmed, metal.base_n, metal.base_k);
         if (dielectric_filmed)
         {
             pair.first = mix(pair.first, film.dielectric, dielectric.film_weight);
@@ -232,6 +237,14 @@ OPENPBR_FUNC OpenPBR_FresnelPair openpbr_fresnel_evaluate_base_pair(OPENPBR_IN(O
         pair.second = pair.second * metal.tint;
     }
     return pair;
+}
+
+OPENPBR_FUNC OpenPBR_FresnelPair openpbr_fresnel_evaluate_base_pair(OPENPBR_IN(OpenPBR_Fresnel) dielectric,
+                                                                    bool dielectric_active,
+                                                                    OPENPBR_IN(OpenPBR_Fresnel) metal, bool metal_active,
+                                                                    float cos_theta)
+{
+    return openpbr_fresnel_evaluate_base_pair_spread(dielectric, dielectric_active, metal, metal_active, cos_theta, 0.0f);
 }
 
 OPENPBR_NAMESPACE_END

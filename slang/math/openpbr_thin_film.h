@@ -160,6 +160,54 @@ OPENPBR_FUNC vec2 openpbr_complex_sqrt(vec2 a)
     return vec2(0.5f * abs(a.y) / imaginary_magnitude, imaginary_part);
 }
 
+// ---- Inputs ---------------------------------------------------------------------------------------
+
+// (n cos)^2 in a medium of real index n for a wave arriving from index n_o:
+// n^2 - n_o^2 sin^2 = (n - n_o)(n + n_o) + (n_o cos_o)^2. This form keeps its precision when
+// n is close to n_o at grazing incidence, where n^2 - n_o^2 sin^2 would cancel.
+OPENPBR_FUNC float openpbr_thin_film_normal_term(float n, float n_o, float outside_normal_term)
+{
+    return (n - n_o) * (n + n_o) + outside_normal_term;
+}
+
+struct OpenPBR_ThinFilmInputs
+{
+    float cos_o;
+    float n_o;
+    float n_f;
+    float thickness_um;
+    float outside_normal_term;  // (n_o cos theta)^2
+    float film_normal_term;     // (n_f cos_f)^2 = n_f^2 - (n_o sin theta)^2, n_o sin theta being
+                                // conserved across parallel interfaces (Snell)
+    // Standard deviation of the film's optical path difference over the microfacets a caller
+    // averages at once (openpbr_base_film_estimate), e.g. 0.02 um; 0 for one microfacet. The
+    // fringes then average out as they do over a spectral lobe: harmonic m of spectral lobe j
+    // is damped by exp(-(2 pi m)^2 (OPD^2 sigma_j^2 + nu_j^2 spread^2) / 2), the Gaussian
+    // phase average of Belcour & Barla 2017 with the path as a second Gaussian variable.
+    float optical_path_spread_um;
+};
+
+OPENPBR_FUNC OpenPBR_ThinFilmInputs openpbr_thin_film_inputs(float cos_theta, float eta_outside, float eta_film,
+                                                             float thickness_um)
+{
+    OpenPBR_ThinFilmInputs inputs;
+    inputs.cos_o = openpbr_clamp_finite(cos_theta, 0.0f, 1.0f);
+    inputs.n_o = openpbr_clamp_finite(eta_outside, OPENPBR_THIN_FILM_MIN_IOR, OPENPBR_THIN_FILM_MAX_IOR);
+    inputs.n_f = openpbr_clamp_finite(eta_film, OPENPBR_THIN_FILM_MIN_IOR, OPENPBR_THIN_FILM_MAX_IOR);
+    inputs.thickness_um = openpbr_clamp_finite(thickness_um, 0.0f, OPENPBR_THIN_FILM_MAX_THICKNESS_UM);
+    inputs.outside_normal_term = openpbr_square(inputs.n_o * inputs.cos_o);
+    inputs.film_normal_term = openpbr_thin_film_normal_term(inputs.n_f, inputs.n_o, inputs.outside_normal_term);
+    inputs.optical_path_spread_um = 0.0f;
+    return inputs;
+}
+
+// spread_phase_variance: (2 pi s)^2 for a path spread s (OpenPBR_ThinFilmInputs), the phase
+// variance per unit nu^2 it adds; 0 for one microfacet.
+OPENPBR_FUNC float openpbr_thin_film_spread_phase_variance(float optical_path_spread_um)
+{
+    return openpbr_square(OPENPBR_TWO_PI * optical_path_spread_um);
+}
+
 // ---- The stack at one channel ------------------------------------------------------------------
 
 // One polarization's Airy series R(delta) = mean + 2 amplitude sum_{m>=1} Re(z^m), z = rho e^{i delta}.
@@ -180,6 +228,7 @@ struct OpenPBR_ThinFilmStack
     bool film_is_evanescent;  // n_o sin(theta) >= n_f: no propagating wave in the film
     float thickness_um;
     float optical_path_difference_um;  // 2 n_f d cos_f (0 when evanescent)
+    float optical_path_spread_um;      // deviation of that path over the microfacets averaged (0: one)
     float film_normal_term;            // (n_f cos_f)^2 = n_f^2 - (n_o sin theta)^2, any sign
     float film_ior_squared;
     float outside_admittance_s;  // n_o cos_o
@@ -227,15 +276,19 @@ OPENPBR_FUNC OpenPBR_ThinFilmPolarization openpbr_thin_film_polarization(float a
 // Needs cos_o > 0. A dielectric base under total internal reflection is handled by the caller
 // (the result is 1); a conductor's complex N cos_b never vanishes unless k = 0, and a k = 0
 // base beyond its critical angle gives R23 = 1, T23 = 0 and so a total reflection here too.
-OPENPBR_FUNC OpenPBR_ThinFilmStack openpbr_thin_film_stack(float cos_o, float n_o, float n_f, float thickness_um,
-                                                           float film_normal_term, vec2 base_ior_squared,
+OPENPBR_FUNC OpenPBR_ThinFilmStack openpbr_thin_film_stack(OPENPBR_IN(OpenPBR_ThinFilmInputs) inputs, vec2 base_ior_squared,
                                                            vec2 base_normal_term)
 {
+    const float cos_o = inputs.cos_o;
+    const float n_o = inputs.n_o;
+    const float n_f = inputs.n_f;
+    const float film_normal_term = inputs.film_normal_term;
     OpenPBR_ThinFilmStack stack;
     stack.film_is_evanescent = film_normal_term <= 0.0f;
     const float cos_f = openpbr_safe_sqrt(film_normal_term) / n_f;
-    stack.thickness_um = thickness_um;
-    stack.optical_path_difference_um = 2.0f * n_f * cos_f * thickness_um;
+    stack.thickness_um = inputs.thickness_um;
+    stack.optical_path_difference_um = 2.0f * n_f * cos_f * inputs.thickness_um;
+    stack.optical_path_spread_um = inputs.optical_path_spread_um;
     stack.film_normal_term = film_normal_term;
     stack.film_ior_squared = n_f * n_f;
     stack.outside_admittance_s = n_o * cos_o;
@@ -308,7 +361,8 @@ struct OpenPBR_ThinFilmLobePhase
     float damping;          // g_j = exp(-(2 pi OPD sigma_j)^2 / 2)
 };
 
-OPENPBR_FUNC OpenPBR_ThinFilmLobePhase openpbr_thin_film_lobe_phase(float optical_path_difference_um, float nu, float sigma)
+OPENPBR_FUNC OpenPBR_ThinFilmLobePhase openpbr_thin_film_lobe_phase(float optical_path_difference_um,
+                                                                    float spread_phase_variance, float nu, float sigma)
 {
     // Half the phase, reduced to [0, pi): the phasor and 1 - phasor are then built from
     // sin and cos of it, 1 - e^{i phi} = 2 sin^2(phi/2) - i sin(phi).
@@ -318,11 +372,14 @@ OPENPBR_FUNC OpenPBR_ThinFilmLobePhase openpbr_thin_film_lobe_phase(float optica
     const float cosine = cos(half_phase);
     const float two_sine_squared = 2.0f * sine * sine;
     const float sine_phase = 2.0f * sine * cosine;
-    const float tau = OPENPBR_TWO_PI * optical_path_difference_um * sigma;
+    // tau^2 = (2 pi)^2 (OPD^2 sigma^2 + spread^2 nu^2): the phase variance over the spectral
+    // lobe and the microfacets.
+    const float tau_squared =
+        openpbr_square(OPENPBR_TWO_PI * optical_path_difference_um * sigma) + spread_phase_variance * (nu * nu);
     OpenPBR_ThinFilmLobePhase phase;
     phase.phasor = vec2(1.0f - two_sine_squared, sine_phase);
     phase.one_minus_phasor = vec2(two_sine_squared, -sine_phase);
-    phase.damping = exp(-0.5f * min(tau * tau, 1e4f));
+    phase.damping = exp(-0.5f * min(tau_squared, 1e4f));
     return phase;
 }
 
@@ -344,40 +401,6 @@ OPENPBR_FUNC float openpbr_thin_film_lobe_tail(OPENPBR_IN(OpenPBR_ThinFilmPolari
     const vec2 round_trip_4 = openpbr_complex_multiply(round_trip_squared, round_trip_squared);
     return damping_16 * damping_8 * phase.damping *
            openpbr_complex_divide(openpbr_complex_multiply(round_trip_4, round_trip), one_minus_tail_ratio_z).x;
-}
-
-// ---- Input handling shared by the public functions ----------------------------------------
-
-// (n cos)^2 in a medium of real index n for a wave arriving from index n_o:
-// n^2 - n_o^2 sin^2 = (n - n_o)(n + n_o) + (n_o cos_o)^2. This form keeps its precision when
-// n is close to n_o at grazing incidence, where n^2 - n_o^2 sin^2 would cancel.
-OPENPBR_FUNC float openpbr_thin_film_normal_term(float n, float n_o, float outside_normal_term)
-{
-    return (n - n_o) * (n + n_o) + outside_normal_term;
-}
-
-struct OpenPBR_ThinFilmInputs
-{
-    float cos_o;
-    float n_o;
-    float n_f;
-    float thickness_um;
-    float outside_normal_term;  // (n_o cos theta)^2
-    float film_normal_term;     // (n_f cos_f)^2 = n_f^2 - (n_o sin theta)^2, n_o sin theta being
-                                // conserved across parallel interfaces (Snell)
-};
-
-OPENPBR_FUNC OpenPBR_ThinFilmInputs openpbr_thin_film_inputs(float cos_theta, float eta_outside, float eta_film,
-                                                             float thickness_um)
-{
-    OpenPBR_ThinFilmInputs inputs;
-    inputs.cos_o = openpbr_clamp_finite(cos_theta, 0.0f, 1.0f);
-    inputs.n_o = openpbr_clamp_finite(eta_outside, OPENPBR_THIN_FILM_MIN_IOR, OPENPBR_THIN_FILM_MAX_IOR);
-    inputs.n_f = openpbr_clamp_finite(eta_film, OPENPBR_THIN_FILM_MIN_IOR, OPENPBR_THIN_FILM_MAX_IOR);
-    inputs.thickness_um = openpbr_clamp_finite(thickness_um, 0.0f, OPENPBR_THIN_FILM_MAX_THICKNESS_UM);
-    inputs.outside_normal_term = openpbr_square(inputs.n_o * inputs.cos_o);
-    inputs.film_normal_term = openpbr_thin_film_normal_term(inputs.n_f, inputs.n_o, inputs.outside_normal_term);
-    return inputs;
 }
 
 // N^2 and N cos_b = sqrt(N^2 - (n_o sin theta)^2) of a base, the two numbers the stack needs.
@@ -405,8 +428,7 @@ OPENPBR_FUNC OpenPBR_ThinFilmStack openpbr_thin_film_conductor_stack(OPENPBR_IN(
                                                                      float k)
 {
     const OpenPBR_ThinFilmBase base = openpbr_thin_film_conductor_base(inputs, n, k);
-    return openpbr_thin_film_stack(inputs.cos_o, inputs.n_o, inputs.n_f, inputs.thickness_um, inputs.film_normal_term,
-                                   base.ior_squared, base.normal_term);
+    return openpbr_thin_film_stack(inputs, base.ior_squared, base.normal_term);
 }
 
 // ---- Public functions ---------------------------------------------------------------------------
@@ -487,8 +509,10 @@ struct OpenPBR_ThinFilmHarmonics
 
 // Harmonics for a film of optical path difference 2 n_f d cos_f (micrometres): one loop over
 // the spectral lobes, six phases in all.
-OPENPBR_FUNC OpenPBR_ThinFilmHarmonics openpbr_thin_film_harmonics(float optical_path_difference_um)
+OPENPBR_FUNC OpenPBR_ThinFilmHarmonics openpbr_thin_film_harmonics(float optical_path_difference_um,
+                                                                   float optical_path_spread_um)
 {
+    const float spread_phase_variance = openpbr_thin_film_spread_phase_variance(optical_path_spread_um);
     OpenPBR_ThinFilmHarmonics harmonics;
     harmonics.real_1 = vec3(0.0f);
     harmonics.imaginary_1 = vec3(0.0f);
@@ -503,7 +527,7 @@ OPENPBR_FUNC OpenPBR_ThinFilmHarmonics openpbr_thin_film_harmonics(float optical
     {
         const OpenPBR_ThinFilmSpectralLobe lobe = openpbr_thin_film_spectral_lobe(lobe_index);
         const OpenPBR_ThinFilmLobePhase phase =
-            openpbr_thin_film_lobe_phase(optical_path_difference_um, lobe.nu, lobe.sigma);
+            openpbr_thin_film_lobe_phase(optical_path_difference_um, spread_phase_variance, lobe.nu, lobe.sigma);
         const float damping = phase.damping;
         const float damping_4 = openpbr_square(damping * damping);
         const vec2 phasor_2 = openpbr_complex_multiply(phase.phasor, phase.phasor);
@@ -558,6 +582,7 @@ OPENPBR_FUNC vec3 openpbr_thin_film_stack_reflectance(OPENPBR_IN(OpenPBR_ThinFil
     if (evanescent ||
         max(stack.s.tail_bound, stack.p.tail_bound) * harmonics.largest_tail_damping > OPENPBR_THIN_FILM_TRUNCATION_ERROR)
     {
+        const float spread_phase_variance = openpbr_thin_film_spread_phase_variance(stack.optical_path_spread_um);
         for (int lobe_index = 0; lobe_index < 6; ++lobe_index)
         {
             const OpenPBR_ThinFilmSpectralLobe lobe = openpbr_thin_film_spectral_lobe(lobe_index);
@@ -568,8 +593,8 @@ OPENPBR_FUNC vec3 openpbr_thin_film_stack_reflectance(OPENPBR_IN(OpenPBR_ThinFil
             }
             else
             {
-                const OpenPBR_ThinFilmLobePhase phase =
-                    openpbr_thin_film_lobe_phase(stack.optical_path_difference_um, lobe.nu, lobe.sigma);
+                const OpenPBR_ThinFilmLobePhase phase = openpbr_thin_film_lobe_phase(
+                    stack.optical_path_difference_um, spread_phase_variance, lobe.nu, lobe.sigma);
                 // 0.5 (2 A_s tail_s + 2 A_p tail_p)
                 lobe_value = stack.s.amplitude * openpbr_thin_film_lobe_tail(stack.s, phase) +
                              stack.p.amplitude * openpbr_thin_film_lobe_tail(stack.p, phase);
@@ -627,7 +652,7 @@ OPENPBR_FUNC OpenPBR_ThinFilmBasePair openpbr_thin_film_fresnel_bases(OPENPBR_IN
         pair.conductor = vec3(0.0f);
     }
     const OpenPBR_ThinFilmHarmonics harmonics =
-        openpbr_thin_film_harmonics(openpbr_thin_film_optical_path_difference(inputs));
+        openpbr_thin_film_harmonics(openpbr_thin_film_optical_path_difference(inputs), inputs.optical_path_spread_um);
     for (int stack_index = first_stack; stack_index < end_stack; ++stack_index)
     {
         OpenPBR_ThinFilmBase base;
@@ -639,9 +664,7 @@ OPENPBR_FUNC OpenPBR_ThinFilmBasePair openpbr_thin_film_fresnel_bases(OPENPBR_IN
             base = openpbr_thin_film_conductor_base(inputs, openpbr_thin_film_channel_of(base_n, channel),
                                                     openpbr_thin_film_channel_of(base_k, channel));
         }
-        const OpenPBR_ThinFilmStack stack =
-            openpbr_thin_film_stack(inputs.cos_o, inputs.n_o, inputs.n_f, inputs.thickness_um, inputs.film_normal_term,
-                                    base.ior_squared, base.normal_term);
+        const OpenPBR_ThinFilmStack stack = openpbr_thin_film_stack(inputs, base.ior_squared, base.normal_term);
         const vec3 rgb = openpbr_thin_film_stack_reflectance(stack, harmonics);
         if (stack_index == 0)
         {
@@ -713,7 +736,8 @@ OPENPBR_FUNC float openpbr_thin_film_fast_channel(OPENPBR_IN(OpenPBR_ThinFilmSta
     {
         return openpbr_thin_film_evanescent_reflectance(stack, nu);
     }
-    const OpenPBR_ThinFilmLobePhase phase = openpbr_thin_film_lobe_phase(stack.optical_path_difference_um, nu, sigma);
+    const OpenPBR_ThinFilmLobePhase phase = openpbr_thin_film_lobe_phase(
+        stack.optical_path_difference_um, openpbr_thin_film_spread_phase_variance(stack.optical_path_spread_um), nu, sigma);
     return 0.5f * (openpbr_thin_film_damped_airy(stack.s, phase) + openpbr_thin_film_damped_airy(stack.p, phase));
 }
 
@@ -735,8 +759,7 @@ OPENPBR_FUNC OpenPBR_ThinFilmBasePair openpbr_thin_film_fast_bases(OPENPBR_IN(Op
     if (with_dielectric && base_normal_term > 0.0f)
     {
         const OpenPBR_ThinFilmStack stack =
-            openpbr_thin_film_stack(inputs.cos_o, inputs.n_o, inputs.n_f, inputs.thickness_um, inputs.film_normal_term,
-                                    vec2(n_b * n_b, 0.0f), vec2(sqrt(base_normal_term), 0.0f));
+            openpbr_thin_film_stack(inputs, vec2(n_b * n_b, 0.0f), vec2(sqrt(base_normal_term), 0.0f));
         pair.dielectric = openpbr_clamp_finite(vec3(openpbr_thin_film_fast_channel(stack, nu.x, sigma.x),
                                                     openpbr_thin_film_fast_channel(stack, nu.y, sigma.y),
                                                     openpbr_thin_film_fast_channel(stack, nu.z, sigma.z)),
