@@ -48,8 +48,8 @@ glm::vec3 film(const Stack& stack, float cos_theta, float thickness_um, float sp
 {
     OpenPBR_ThinFilmInputs inputs = openpbr_thin_film_inputs(cos_theta, stack.outside_ior, stack.film_ior, thickness_um);
     inputs.optical_path_spread_um = spread_um;
-    const OpenPBR_ThinFilmBasePair pair = openpbr_thin_film_fresnel_bases(inputs, !stack.conductor, stack.base_ior,
-                                                                          stack.conductor, gold_n, gold_k);
+    const OpenPBR_ThinFilmBasePair pair =
+        openpbr_thin_film_fresnel_bases(inputs, !stack.conductor, stack.base_ior, stack.conductor, gold_n, gold_k);
     return stack.conductor ? pair.conductor : pair.dielectric;
 }
 
@@ -90,17 +90,17 @@ TEST(FilmPathSpread, EqualsTheAverageOverGaussianPaths)
                     {
                         continue;
                     }
-                    average += weight * glm::dvec3(film(stack, cos_theta,
-                                                        float(stack.thickness_um * node_path / path), 0.0f));
+                    average +=
+                        weight * glm::dvec3(film(stack, cos_theta, float(stack.thickness_um * node_path / path), 0.0f));
                     weight_sum += weight;
                 }
                 average /= weight_sum;
                 const glm::dvec3 model(film(stack, cos_theta, stack.thickness_um, spread));
                 const double difference = max_abs_difference(model, average);
                 largest = std::max(largest, difference);
-                EXPECT_LE(difference, 2e-3) << stack.name << " cos " << cos_theta << " spread " << spread
-                                            << ": model " << model.x << " " << model.y << " " << model.z
-                                            << ", average " << average.x << " " << average.y << " " << average.z;
+                EXPECT_LE(difference, 2e-3)
+                    << stack.name << " cos " << cos_theta << " spread " << spread << ": model " << model.x << " " << model.y
+                    << " " << model.z << ", average " << average.x << " " << average.y << " " << average.z;
             }
         }
     }
@@ -117,9 +117,8 @@ TEST(FilmPathSpread, ZeroSpreadIsTheSingleMicrofacetFilm)
             const glm::vec3 single = stack.conductor
                                          ? openpbr_thin_film_fresnel_conductor(cos_theta, stack.outside_ior, stack.film_ior,
                                                                                gold_n, gold_k, stack.thickness_um)
-                                         : openpbr_thin_film_fresnel_dielectric(cos_theta, stack.outside_ior,
-                                                                                stack.film_ior, stack.base_ior,
-                                                                                stack.thickness_um);
+                                         : openpbr_thin_film_fresnel_dielectric(cos_theta, stack.outside_ior, stack.film_ior,
+                                                                                stack.base_ior, stack.thickness_um);
             const glm::vec3 spread_zero = film(stack, cos_theta, stack.thickness_um, 0.0f);
             EXPECT_EQ(single.x, spread_zero.x) << stack.name;
             EXPECT_EQ(single.y, spread_zero.y) << stack.name;
@@ -196,9 +195,9 @@ Lobe make_lobe(const EstimateCase& c)
     Lobe lobe;
     lobe.dielectric = openpbr_add_thin_film(openpbr_make_dielectric_fresnel(1.5f / c.outside_ior, glm::vec3(1.0f)), 1.0f,
                                             c.thickness_um, c.film_ior, c.outside_ior);
-    lobe.metal = openpbr_add_thin_film(
-        openpbr_make_f82_fresnel(glm::vec3(1.0f, 0.78f, 0.34f), glm::vec3(1.0f), glm::vec3(1.0f)), 1.0f, c.thickness_um,
-        c.film_ior, c.outside_ior);
+    lobe.metal =
+        openpbr_add_thin_film(openpbr_make_f82_fresnel(glm::vec3(1.0f, 0.78f, 0.34f), glm::vec3(1.0f), glm::vec3(1.0f)),
+                              1.0f, c.thickness_um, c.film_ior, c.outside_ior);
     return lobe;
 }
 
@@ -251,8 +250,8 @@ TEST_P(FilmEstimate, FollowsTheDenseLobeAverage)
         << "change: estimate " << estimate.first.x << " " << estimate.first.y << " " << estimate.first.z << ", reference "
         << reference.first.x << " " << reference.first.y << " " << reference.first.z;
     EXPECT_LE(max_abs_difference(glm::dvec3(estimate.second), glm::dvec3(reference.second)), c.metal_bound)
-        << "metal: estimate " << estimate.second.x << " " << estimate.second.y << " " << estimate.second.z
-        << ", reference " << reference.second.x << " " << reference.second.y << " " << reference.second.z;
+        << "metal: estimate " << estimate.second.x << " " << estimate.second.y << " " << estimate.second.z << ", reference "
+        << reference.second.x << " " << reference.second.y << " " << reference.second.z;
 }
 
 INSTANTIATE_TEST_SUITE_P(Regimes, FilmEstimate, ::testing::ValuesIn(estimate_cases()),
@@ -286,9 +285,8 @@ TEST(FilmEstimateMirror, InactiveFactorsAreZero)
 {
     const EstimateCase c = estimate_cases().front();
     const Lobe lobe = make_lobe(c);
-    const OpenPBR_FresnelPair estimate =
-        openpbr_base_film_estimate(lobe.dielectric, false, lobe.metal, false, glm::vec3(0.0f, 0.0f, 1.0f),
-                                   openpbr_ggx_alpha(0.5f, 0.0f));
+    const OpenPBR_FresnelPair estimate = openpbr_base_film_estimate(
+        lobe.dielectric, false, lobe.metal, false, glm::vec3(0.0f, 0.0f, 1.0f), openpbr_ggx_alpha(0.5f, 0.0f));
     EXPECT_EQ(estimate.first.x, 0.0f);
     EXPECT_EQ(estimate.second.y, 0.0f);
 }
