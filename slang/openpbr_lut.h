@@ -41,6 +41,26 @@
 //          fall inside a cell of one eta node and outside that of the next, and interpolating
 //          along eta mixed the two (errors up to 0.97 in E_R at eta 0.999); on this axis the
 //          nodes of neighbouring eta slices sit at the same fraction of mu_c.
+//          Below eta = 1 each half is warped further towards mu_c on the scale of the step
+//          itself (openpbr_lut_step_warp): a microfacet tilted by delta (about alpha for GGX)
+//          meets the view at the critical angle when the view is delta away from it, so the
+//          albedos go from total internal reflection to the Fresnel factor's square-root edge
+//          (F ~ 1 - C sqrt(mu - mu_c)) over a width w = alpha sin(theta_c) in mu, i.e.
+//          alpha eta / (2 sqrt(mu_c)) in sqrt(mu) (sin(theta_c) = eta). With d the distance
+//          from sqrt(mu_c) as a fraction of the half and k = K w / (half's length), the half's
+//          coordinate is (asinh(d / k) + L d) / (asinh(1 / k) + L): even steps of about k next
+//          to mu_c, logarithmic ones beyond, and linear (the axis above) once k >> 1 (the
+//          roughest lobes: openpbr_lut_step_width uses alpha / (1 - alpha)). Because w is
+//          proportional to alpha = r^2 for smooth lobes, a node past the step keeps its sqrt(d)
+//          (the Fresnel edge) linear in r, the roughness axis. On the plain axis 16 cells per
+//          side put the step of smooth lobes inside one cell: E_T0 read 0.49 wrong and E_R 0.46
+//          next to mu_c (1D study at exact eta nodes, 2^15 samples per value, roughness
+//          0.02-0.5, views within 0.15 of mu_c); with the warp 0.044 and 0.13, and at most 0.025
+//          and 0.042 where mu_c >= 0.007 (the 0.13 at mu_c = 0.002, eta 1 - 2e-6, at mu = 8e-4);
+//          mean error over the study 0.041 -> 0.0024 (with L = 2 on both halves; docs/stability.md
+//          "Critical angle below relative IOR 1 (session 10)"). K = OPENPBR_LUT_STEP_WIDTH_SCALE;
+//          L = OPENPBR_LUT_STEP_LINEAR_WEIGHT_ABOVE past mu_c and
+//          OPENPBR_LUT_STEP_LINEAR_WEIGHT_BELOW before it (longer cells at grazing views).
 // The two nodes at eta = 1 hold the one-sided limits (s = s_0, eta = 1 -/+ 2^-20): at grazing
 // views the Fresnel factor tends to a function of mu / mu_c that differs between the sides (1
 // under total internal reflection below eta = 1), and is 0 at eta = 1 itself. Closer to
@@ -78,6 +98,19 @@
 #define OPENPBR_LUT_ETA_KNEE 9.765625e-4f
 // Distance from eta = 1 below which the critical cosine is that of the eta = 1 nodes, 2^-20.
 #define OPENPBR_LUT_UNIT_ETA_STEP 9.5367431640625e-7f
+// The view axis' warp towards the critical cosine below eta = 1 (u_mu above): the scale K of
+// the step's width, e.g. 0.5; the weight L of the warp's linear term past mu_c, e.g. 2, and
+// before it, e.g. 16; and the smallest alpha the width takes, e.g. 1e-4 (the generator's
+// smallest alpha). 1D study (K 0.25-2, L 1-16): every choice within a factor 2 of the others
+// next to mu_c, K 0.5 and L 2 the smallest mean error. Before mu_c the half ends at grazing
+// views, where rough lobes' albedos change fastest: with L = 2 its last cells were up to 2.2
+// times as long as the plain axis' and rough glass below eta = 1 lost up to 14 % more at
+// cos 0.001 (white furnace, eta 0.9, roughness 0.5: 0.845 -> 0.706); L = 16 keeps them within
+// 1.2 times (roughness >= 0.2).
+#define OPENPBR_LUT_STEP_WIDTH_SCALE 0.5f
+#define OPENPBR_LUT_STEP_LINEAR_WEIGHT_ABOVE 2.0f
+#define OPENPBR_LUT_STEP_LINEAR_WEIGHT_BELOW 16.0f
+#define OPENPBR_LUT_STEP_MIN_ALPHA 1e-4f
 
 // Smallest view cosine the tables hold, e.g. 1e-4: the generator's floor (minimum_mu in
 // host/tables/lut_generator.cpp); openpbr_prepare raises closer-to-grazing views to it.
@@ -287,18 +320,45 @@ OPENPBR_FUNC float openpbr_lut_critical_cosine(float eta)
     const float larger = max(eta, 1.0f);
     return sqrt(min(distance * (eta + 1.0f) / (larger * larger), 1.0f));
 }
-// The 3D tables' view axis u_mu in [0, 1]: sqrt(mu) with the critical cosine at 1/2 (see the
-// top of this file). mu_c <= sqrt(8/9) on [1/3, 3], so 1 - sqrt(mu_c) >= 0.029.
-OPENPBR_FUNC float openpbr_lut_view_coordinate(float mu, float critical_cosine)
+OPENPBR_FUNC float openpbr_lut_asinh(float x) { return log(x + sqrt(x * x + 1.0f)); }
+// Width w of the albedos' step at the critical cosine, in sqrt(mu), scaled by K (see u_mu at
+// the top of this file): K a eta / (2 sqrt(mu_c)) below eta = 1 with a = max(alpha, 1e-4) /
+// max(1 - alpha, 1e-3), 0 (no step: the plain axis) at and above it. a is alpha for smooth
+// lobes; 1 / (1 - alpha) returns the roughest lobes to the plain axis (w -> 1000 times the
+// half), whose albedos change on the scale of mu itself: with a = alpha, glass of relative IOR
+// 0.5 and roughness 1 gained 0.8 % at cos 0.5 (1.0079 +- 0.0007, against 1.004 on the plain
+// axis).
+OPENPBR_FUNC float openpbr_lut_step_width(float alpha, float eta, float critical_cosine)
+{
+    const float scale = max(alpha, OPENPBR_LUT_STEP_MIN_ALPHA) / max(1.0f - alpha, 1e-3f);
+    return eta < 1.0f ? OPENPBR_LUT_STEP_WIDTH_SCALE * scale * eta / (2.0f * sqrt(critical_cosine)) : 0.0f;
+}
+// Position in [0, 1] along one half of the view axis of the point at fraction `distance` of
+// the half from the critical cosine, for a step of width `scale` (as a fraction of the half)
+// and the linear weight `slope`: (asinh(d / k) + L d) / (asinh(1 / k) + L), 0 at d = 0 and 1
+// at d = 1.
+OPENPBR_FUNC float openpbr_lut_step_warp(float distance, float scale, float slope)
+{
+    return (openpbr_lut_asinh(distance / scale) + slope * distance) / (openpbr_lut_asinh(1.0f / scale) + slope);
+}
+// The 3D tables' view axis u_mu in [0, 1]: sqrt(mu) with the critical cosine at 1/2, warped
+// towards it by a step of width step_width (openpbr_lut_step_width; 0: not warped) (see the top
+// of this file). mu_c <= sqrt(8/9) on [1/3, 3], so 1 - sqrt(mu_c) >= 0.029.
+OPENPBR_FUNC float openpbr_lut_view_coordinate(float mu, float critical_cosine, float step_width)
 {
     const float m = sqrt(clamp(mu, 0.0f, 1.0f));
     const float c = sqrt(critical_cosine);
-    return m < c ? 0.5f * m / c : 0.5f + 0.5f * (m - c) / (1.0f - c);
+    if (step_width <= 0.0f)
+    {
+        return m < c ? 0.5f * m / c : 0.5f + 0.5f * (m - c) / (1.0f - c);
+    }
+    return m < c ? 0.5f - 0.5f * openpbr_lut_step_warp((c - m) / c, step_width / c, OPENPBR_LUT_STEP_LINEAR_WEIGHT_BELOW)
+                 : 0.5f + 0.5f * openpbr_lut_step_warp(min((m - c) / (1.0f - c), 1.0f), step_width / (1.0f - c),
+                                                       OPENPBR_LUT_STEP_LINEAR_WEIGHT_ABOVE);
 }
 // Node coordinate along eta of the 3D tables, in [0, OPENPBR_LUT_3D_ETA_SIZE - 1]: [0, H - 1]
 // for eta < 1 (node H - 1 the limit eta -> 1 from below), [H, 2 H - 1] for eta >= 1 (node H the
 // limit from above), H = OPENPBR_LUT_3D_ETA_SIZE / 2.
-OPENPBR_FUNC float openpbr_lut_asinh(float x) { return log(x + sqrt(x * x + 1.0f)); }
 OPENPBR_FUNC float openpbr_lut_eta_node(float eta)
 {
     const float y = (eta - 1.0f) / (eta + 1.0f);
@@ -462,7 +522,8 @@ OPENPBR_FUNC float openpbr_lut_3d(int offset, float mu, float alpha, float eta)
 {
     const float scale = float(OPENPBR_LUT_3D_SIZE - 1);
     const float critical_cosine = openpbr_lut_critical_cosine(eta);
-    const float view = openpbr_lut_view_coordinate(mu, critical_cosine);
+    const float step_width = openpbr_lut_step_width(alpha, eta, critical_cosine);
+    const float view = openpbr_lut_view_coordinate(mu, critical_cosine, step_width);
     // NaN-safe clamps: a NaN coordinate (e.g. from a NaN wavelength) would make int() undefined.
     const float fx = openpbr_clamp_finite(view, 0.0f, 1.0f) * scale;
     const float fy = openpbr_clamp_finite(openpbr_lut_roughness_coordinate(alpha), 0.0f, 1.0f) * scale;
@@ -479,7 +540,8 @@ OPENPBR_FUNC float openpbr_lut_3d(int offset, float mu, float alpha, float eta)
     // Nodes below the view coordinate of the generator's floor mu = 1e-4 hold the floor's values
     // (near eta = 1 the warped axis puts the first nodes there), so a cell starting at one is a
     // first cell too (IOR 1.0001, roughness 0.3, cos 1e-4: E_T0 interpolated 0.825, true 0.850).
-    const bool first_cell = float(x0) < scale * openpbr_lut_view_coordinate(OPENPBR_LUT_MIN_VIEW_COSINE, critical_cosine);
+    const bool first_cell =
+        float(x0) < scale * openpbr_lut_view_coordinate(OPENPBR_LUT_MIN_VIEW_COSINE, critical_cosine, step_width);
     if (!first_cell || tx == 0.0f)
     {
         return openpbr_lut_3d_along_eta(offset, x0, y0, tx, ty, fz);

@@ -284,11 +284,47 @@ double lut_critical_cosine(const double eta)
     return std::sqrt(std::min(distance * (eta + 1.0) / (larger * larger), 1.0));
 }
 
-double lut_mu_from_view_coordinate(const double u, const double eta)
+double lut_step_width(const double alpha, const double eta)
+{
+    const double scale = std::max(alpha, double(OPENPBR_LUT_STEP_MIN_ALPHA)) / std::max(1.0 - alpha, 1e-3);
+    return eta < 1.0 ? double(OPENPBR_LUT_STEP_WIDTH_SCALE) * scale * eta / (2.0 * std::sqrt(lut_critical_cosine(eta)))
+                     : 0.0;
+}
+
+double lut_view_coordinate(const double mu, const double eta, const double alpha)
+{
+    const double m = std::sqrt(std::clamp(mu, 0.0, 1.0));
+    const double c = std::sqrt(lut_critical_cosine(eta));
+    const double width = lut_step_width(alpha, eta);
+    if (width <= 0.0)
+    {
+        return m < c ? 0.5 * m / c : 0.5 + 0.5 * (m - c) / (1.0 - c);
+    }
+    const auto warp = [](const double distance, const double scale, const double slope) {
+        return (std::asinh(distance / scale) + slope * distance) / (std::asinh(1.0 / scale) + slope);
+    };
+    return m < c ? 0.5 - 0.5 * warp((c - m) / c, width / c, double(OPENPBR_LUT_STEP_LINEAR_WEIGHT_BELOW))
+                 : 0.5 + 0.5 * warp(std::min((m - c) / (1.0 - c), 1.0), width / (1.0 - c),
+                                    double(OPENPBR_LUT_STEP_LINEAR_WEIGHT_ABOVE));
+}
+
+double lut_mu_from_view_coordinate(const double u, const double eta, const double alpha)
 {
     const double c = std::sqrt(lut_critical_cosine(eta));
     const double v = std::clamp(u, 0.0, 1.0);
-    const double m = v < 0.5 ? 2.0 * v * c : c + (2.0 * v - 1.0) * (1.0 - c);
+    double m = v < 0.5 ? 2.0 * v * c : c + (2.0 * v - 1.0) * (1.0 - c);
+    if (lut_step_width(alpha, eta) > 0.0 && v != 0.5)
+    {
+        // The warped axis is increasing in m on each half: bisection on the half of v.
+        double low = v < 0.5 ? 0.0 : c;
+        double high = v < 0.5 ? c : 1.0;
+        for (int iteration = 0; iteration < 100; ++iteration)
+        {
+            const double middle = 0.5 * (low + high);
+            (lut_view_coordinate(middle * middle, eta, alpha) < v ? low : high) = middle;
+        }
+        m = v <= 0.0 ? 0.0 : (v >= 1.0 ? 1.0 : 0.5 * (low + high));
+    }
     return std::max(m * m, minimum_mu);
 }
 
@@ -448,7 +484,8 @@ double estimate_lut_entry(const int table, const double mu, const double r, cons
 {
     check_table(table);
     const double eta = is_dielectric_table(table) ? lut_eta_from_coordinate(x) : 1.0;
-    const double mu_value = is_dielectric_table(table) ? lut_mu_from_view_coordinate(mu, eta) : lut_mu_from_coordinate(mu);
+    const double mu_value = is_dielectric_table(table) ? lut_mu_from_view_coordinate(mu, eta, lut_alpha_from_coordinate(r))
+                                                       : lut_mu_from_coordinate(mu);
     return estimate_entry(table, mu_value, lut_alpha_from_coordinate(r), eta, r, x, phi, samples, seed);
 }
 
@@ -576,9 +613,10 @@ std::vector<float> generate_lut(const LutGeneratorOptions& options)
             // The eta node's relative IOR and the view cosine of the warped view axis there.
             const int eta_index = int(local / (std::size_t(layout.size_3d) * std::size_t(layout.size_3d)));
             const double eta = lut_eta_from_node(eta_index, layout.size_3d_eta);
-            value = estimate_entry(table, lut_mu_from_view_coordinate(coordinates[0], eta),
-                                   lut_alpha_from_coordinate(coordinates[1]), eta, coordinates[1], 0.0, 0.0, options.samples,
-                                   lut_cell_seed(table, local, options.seed));
+            value = estimate_entry(
+                table, lut_mu_from_view_coordinate(coordinates[0], eta, lut_alpha_from_coordinate(coordinates[1])),
+                lut_alpha_from_coordinate(coordinates[1]), eta, coordinates[1], 0.0, 0.0, options.samples,
+                lut_cell_seed(table, local, options.seed));
         }
         else
         {

@@ -8,7 +8,8 @@
 // mu = max(node, 1e-4). Tables 1-3 are at the relative IOR eta of their eta node
 // (lut_eta_from_node: two halves, eta < 1 and eta > 1, each ending at the one-sided limit
 // eta = 1 -/+ OPENPBR_LUT_UNIT_ETA_STEP) and the view cosine of their view node
-// (lut_mu_from_view_coordinate: sqrt(mu) warped so that the critical cosine of eta is at 1/2):
+// (lut_mu_from_view_coordinate: sqrt(mu) warped so that the critical cosine of eta is at 1/2,
+// below eta = 1 also towards it on the scale of alpha):
 //   0 E_ggx(mu, r)   reflection, F = 1:               E[G2(wo, wi) / G1(wo)], wi.z > 0
 //   1 E_R(mu, r, x)  reflection, exact Fresnel:       E[F(wo.h) G2 / G1]
 //   2 E_T0(mu, r, x) transmission, no Fresnel factor: E[G2(wo, wt) / G1(wo)], wt.z < 0, 0 under TIR
@@ -134,9 +135,12 @@ double lut_eta_from_coordinate(double x);  // (1 + y) / (1 - y), y = 2 sgn(x - 0
 // eta_size / 2, 3 at eta_size - 1.
 double lut_eta_from_node(int index, int eta_size);
 double lut_critical_cosine(double eta);  // openpbr_lut_critical_cosine in double
-// The view cosine at view coordinate u in [0, 1] of the 3D tables (openpbr_lut_view_coordinate
-// inverted), floored at 1e-4.
-double lut_mu_from_view_coordinate(double u, double eta);
+// The view coordinate u in [0, 1] of the 3D tables at view cosine mu, relative IOR eta and GGX
+// alpha (openpbr_lut_view_coordinate with openpbr_lut_step_width, in double), and its inverse:
+// the view cosine at u, floored at 1e-4. Below eta = 1 the axis depends on alpha (the warp
+// towards the critical cosine on the scale of the step, slang/openpbr_lut.h).
+double lut_view_coordinate(double mu, double eta, double alpha);
+double lut_mu_from_view_coordinate(double u, double eta, double alpha);
 double lut_alpha_from_coordinate(double r);       // max(r^2, 1e-4)
 double lut_mu_from_coordinate(double mu);         // max(mu^2, 1e-4): the axis is sqrt(mu)
 double lut_anisotropy_from_coordinate(double a);  // 1 - (1 - a)^2: the axis is 1 - sqrt(1 - anisotropy)

@@ -77,9 +77,13 @@ float at_4d(const std::vector<float>& data, const int mu_index, const int r_inde
 
 double node(const int i, const int n) { return double(i) / double(n - 1); }
 
-// The relative IOR and view cosine of a node of tables 1-3 (x the eta node, mu the view node).
+// The relative IOR and view cosine of a node of tables 1-3 (x the eta node, r the roughness
+// node, mu the view node; below eta = 1 the view axis depends on alpha).
 double eta_of_node(const int x) { return lut_eta_from_node(x, e3); }
-double mu_of_node(const int mu, const int x) { return lut_mu_from_view_coordinate(node(mu, n3), eta_of_node(x)); }
+double mu_of_node(const int mu, const int r, const int x)
+{
+    return lut_mu_from_view_coordinate(node(mu, n3), eta_of_node(x), lut_alpha_from_coordinate(node(r, n3)));
+}
 // E_ggx from the shipped table 0 at view cosine mu and roughness coordinate r, as the shading
 // language reads it.
 double shipped_ggx_albedo(const double mu, const double r)
@@ -409,6 +413,98 @@ TEST(LutGenerator, AzimuthCoordinateMatchesTheShadingLanguage)
     }
 }
 
+TEST(LutGenerator, ViewCoordinateMatchesTheShadingLanguage)
+{
+    // The 3D tables' view axis in float (slang/openpbr_lut.h) and in double (the generator), at
+    // the relative IORs users set, the eta = 1 limits and the range ends, at the roughness ends
+    // and the smooth lobes whose critical step the warp resolves, and at views next to mu_c.
+    const double unit_below = lut_eta_from_node(e3 / 2 - 1, e3);
+    for (const double eta : {1.0 / 3.0, 0.5, 0.75, 0.9, 0.99, 0.999, unit_below, 1.0, 1.001, 1.5, 3.0})
+    {
+        const double critical = lut_critical_cosine(eta);
+        for (const double alpha : {0.0, 1e-4, 0.0016, 0.0025, 0.04, 0.25, 1.0})
+        {
+            const float step_width =
+                openpbr::openpbr_lut_step_width(float(alpha), float(eta), openpbr::openpbr_lut_critical_cosine(float(eta)));
+            EXPECT_EQ(step_width > 0.0f, eta < 1.0);
+            EXPECT_NEAR(lut_view_coordinate(critical, eta, alpha), 0.5, 1e-12);
+            double previous = -1.0;
+            for (const double offset : {-1.0, -0.3, -0.01, -0.001, -1e-4, 0.0, 1e-4, 0.001, 0.003, 0.01, 0.05, 0.3, 1.0})
+            {
+                const double mu = std::clamp(critical + offset, 1e-4, 1.0);
+                const double coordinate = lut_view_coordinate(mu, eta, alpha);
+                // Float against double at the same (float) inputs, compared as the view cosine the
+                // float coordinate stands for: next to mu_c of a smooth lobe the axis stretches a
+                // float ulp of mu or of mu_c over up to 3e-4 of the coordinate, so the
+                // coordinates differ there as much as the albedos do between mu and its float
+                // neighbours; and near grazing the lower half's 1/2 - g/2 cancels (coordinate
+                // 0.001, error 1e-8). Bound 1e-4 of mu; largest measured 4.0e-5 (at mu 1e-4), 1.9e-6
+                // at mu 0.34.
+                const float mu_float = float(mu);
+                const float eta_float = float(eta);
+                const float shading = openpbr::openpbr_lut_view_coordinate(
+                    mu_float, openpbr::openpbr_lut_critical_cosine(eta_float), step_width);
+                EXPECT_NEAR(lut_mu_from_view_coordinate(shading, eta_float, alpha), double(mu_float), 1e-4 * mu)
+                    << "eta " << eta << ", alpha " << alpha << ", mu " << mu << ": coordinate " << shading << " against "
+                    << coordinate;
+                EXPECT_GE(coordinate, previous);
+                previous = coordinate;
+                // The generator's inverse puts each node at the view the look-up maps to it.
+                EXPECT_NEAR(lut_mu_from_view_coordinate(coordinate, eta, alpha), mu, 1e-9 + 1e-9 * mu)
+                    << "eta " << eta << ", alpha " << alpha << ", mu " << mu;
+            }
+            EXPECT_EQ(lut_view_coordinate(0.0, eta, alpha), 0.0);
+            EXPECT_NEAR(lut_view_coordinate(1.0, eta, alpha), 1.0, 1e-12);
+        }
+    }
+}
+
+TEST(LutGenerator, LookUpResolvesTheCriticalStepBelowUnitEta)
+{
+    // Seen from the less dense side the interface's albedos step at the critical cosine mu_c =
+    // sqrt(1 - eta^2) over a width of about alpha (docs/stability.md "Critical angle below
+    // relative IOR 1"). The look-up (view axis warped towards mu_c on the scale of alpha,
+    // interpolated in r and along eta) against Monte Carlo at the furnace's critical rows'
+    // relative IORs and roughnesses, at views from 0.01 before to 0.04 past mu_c, which fall
+    // between the table's nodes on every axis. Measured largest |look-up - Monte Carlo| (2^16
+    // samples per value, standard error below 1e-3): E_R 0.0173, past mu_c at roughness 0.05
+    // (between the r nodes 1/32 and 1/16, where the warp's scale changes fourfold; 0.004 at r
+    // 0.1), read too high there: the refraction gets less light, a loss; E_T0 0.032, before mu_c
+    // (mu_c - 0.003 and - 0.01), where the warp's linear weight 16 keeps longer cells for the
+    // grazing views (0.011 with weight 6, which loses twice as much at cos 0.001); with the plain
+    // axis (16 cells per side of mu_c) up to 0.46 and 0.49 (1D study).
+    double largest_reflection = 0.0;
+    double largest_transmission = 0.0;
+    for (const double eta : {0.5, 0.75, 0.9, 0.95, 0.99})
+    {
+        const double critical = std::sqrt(1.0 - eta * eta);
+        for (const double roughness : {0.05, 0.1, 0.2})
+        {
+            const double alpha = roughness * roughness;
+            for (const double offset : {-0.01, -0.003, 0.0, 0.002, 0.005, 0.01, 0.02, 0.04})
+            {
+                const double mu = critical + offset;
+                const double reflection =
+                    openpbr::openpbr_lut_3d(OPENPBR_LUT_DIELECTRIC_REFLECTION_OFFSET, float(mu), float(alpha), float(eta));
+                const double transmission =
+                    openpbr::openpbr_lut_3d(OPENPBR_LUT_DIELECTRIC_TRANSMISSION_OFFSET, float(mu), float(alpha), float(eta));
+                const double reflection_error =
+                    reflection - estimate_dielectric_entry(lut_table_dielectric_reflection, mu, alpha, eta, 1u << 16, 7);
+                const double transmission_error =
+                    transmission - estimate_dielectric_entry(lut_table_dielectric_transmission, mu, alpha, eta, 1u << 16, 7);
+                EXPECT_LE(std::fabs(reflection_error), 0.022)
+                    << "E_R at eta " << eta << ", roughness " << roughness << ", mu_c + " << offset;
+                EXPECT_LE(std::fabs(transmission_error), 0.04)
+                    << "E_T0 at eta " << eta << ", roughness " << roughness << ", mu_c + " << offset;
+                largest_reflection = std::max(largest_reflection, std::fabs(reflection_error));
+                largest_transmission = std::max(largest_transmission, std::fabs(transmission_error));
+            }
+        }
+    }
+    std::printf("largest |look-up - Monte Carlo| next to mu_c: E_R %.4f, E_T0 %.4f\n", largest_reflection,
+                largest_transmission);
+}
+
 TEST(LutGenerator, AnisotropicLookUpReturnsTheNodeValues)
 {
     // openpbr_ggx_albedo_anisotropic at the physical parameters of a node reads that node: the
@@ -513,7 +609,7 @@ TEST(LutGenerator, SmoothInterfaceConservesEnergy)
                 // E_RT = table 3 x E_ggx (openpbr_dielectric_interface_albedo): the F = 1
                 // albedo at the node from table 0, whose interpolation adds up to 1.7e-3
                 // (largest of 400 random grazing points against Monte Carlo).
-                const double e_ggx = shipped_ggx_albedo(mu_of_node(mu, x), node(r, n3));
+                const double e_ggx = shipped_ggx_albedo(mu_of_node(mu, r, x), node(r, n3));
                 EXPECT_LE(at_3d(shipped(), lut_table_dielectric_interface, mu, r, x) * e_ggx, 1.0 + 2e-3)
                     << "mu node " << mu << ", r node " << r << ", x node " << x;
             }
@@ -523,13 +619,15 @@ TEST(LutGenerator, SmoothInterfaceConservesEnergy)
         // Near the critical cosine of a nearly index-matched interface (below 0.1) the floor
         // is not negligible either: the total internal reflection of a lobe 0.01 rad wide
         // sets in within 0.1 of grazing there (0.947 measured at the critical node of
-        // eta 0.9997, 0.996-0.998 three to five nodes below it), so the view nodes from five
-        // below to one above it are left out there.
-        const int critical_node = (n3 - 1) / 2;
+        // eta 0.9997, 0.996-0.998 three to five nodes below it on the plain view axis; on the
+        // warped axis 0.988 at 1.03 mu_c and 0.997 at 0.81 mu_c of eta 1 - 3e-6), so the views
+        // from 0.45 mu_c to 1.1 mu_c are left out there (five nodes below to one above the
+        // critical node on the plain axis reached from 0.47 mu_c to 4.8 mu_c).
         for (int mu = 1; mu < n3; ++mu)
         {
-            if (mu_of_node(mu, x) < 0.0017 ||
-                (lut_critical_cosine(eta_of_node(x)) < 0.1 && mu >= critical_node - 5 && mu <= critical_node + 1))
+            const double critical = lut_critical_cosine(eta_of_node(x));
+            const double mu_value = mu_of_node(mu, 0, x);
+            if (mu_value < 0.0017 || (critical < 0.1 && mu_value >= 0.45 * critical && mu_value <= 1.1 * critical))
             {
                 continue;
             }
@@ -546,10 +644,15 @@ TEST(LutGenerator, SmoothInterfaceConservesEnergy)
 TEST(LutGenerator, TotalInternalReflection)
 {
     // Inside the denser medium (eta < 1) at grazing view beyond the critical angle a smooth
-    // interface transmits nothing and reflects everything: eta = 1/3 at x = 0, mu about 0.2
-    // (the node at view coordinate 0.23, critical cosine 0.943) gives sin_t = 0.98 * 3 > 1.
-    const int mu = int(std::lround(0.23 * (n3 - 1)));
-    ASSERT_LT(mu_of_node(mu, 0), 0.3);
+    // interface transmits nothing and reflects everything: eta = 1/3 at x = 0 (critical cosine
+    // 0.943), the last view node below mu = 0.3 (0.26 on the warped axis) gives sin_t = 0.97 * 3
+    // > 1.
+    int mu = 1;
+    while (mu_of_node(mu + 1, 0, 0) < 0.3)
+    {
+        ++mu;
+    }
+    ASSERT_GT(mu_of_node(mu, 0, 0), 0.1);
     EXPECT_NEAR(at_3d(shipped(), lut_table_dielectric_transmission, mu, 0, 0), 0.0f, 1e-4f);
     EXPECT_NEAR(at_3d(shipped(), lut_table_dielectric_reflection, mu, 0, 0), 1.0f, 2e-3f);
 }
@@ -583,7 +686,7 @@ TEST(LutGenerator, ShippedTablesMatchAnIndependentQuadrature)
     {
         const bool dielectric = p.table != lut_table_ggx_albedo;
         const int n = dielectric ? n3 : n2;
-        const double mu_value = dielectric ? mu_of_node(p.mu, p.x) : lut_mu_from_coordinate(node(p.mu, n));
+        const double mu_value = dielectric ? mu_of_node(p.mu, p.r, p.x) : lut_mu_from_coordinate(node(p.mu, n));
         double reference = quadrature_albedo(p.table, mu_value, node(p.r, n), dielectric ? eta_of_node(p.x) : 1.0);
         // Tables 1 and 3 hold E_R and E_RT over the F = 1 albedo of the same lobe.
         if (p.table == lut_table_dielectric_reflection || p.table == lut_table_dielectric_interface)
@@ -623,7 +726,8 @@ TEST(LutGenerator, DeterministicAndIndependentOfThreadCount)
     const LutLayout small = options.layout();
     const double eta = lut_eta_from_node(2, 6);
     EXPECT_EQ(one_thread[small.offset(lut_table_dielectric_transmission) + (2 * 4 + 1) * 4 + 3],
-              float(estimate_dielectric_entry(lut_table_dielectric_transmission, lut_mu_from_view_coordinate(1.0, eta),
+              float(estimate_dielectric_entry(lut_table_dielectric_transmission,
+                                              lut_mu_from_view_coordinate(1.0, eta, lut_alpha_from_coordinate(1.0 / 3.0)),
                                               lut_alpha_from_coordinate(1.0 / 3.0), eta, 256,
                                               lut_cell_seed(lut_table_dielectric_transmission, (2 * 4 + 1) * 4 + 3))));
     // Table 4: mu node 1 of 3, r node 2 of 3, a node 3 of 4, phi node 1 of 4.
@@ -654,7 +758,9 @@ TEST(LutGenerator, OtherSizesKeepTheNodeValues)
     {
         for (int mu = 1; mu < 17; ++mu)
         {
-            if (lut_mu_from_view_coordinate(node(mu, 17), lut_eta_from_node(3, 6)) < 0.1)
+            const double mu_value =
+                lut_mu_from_view_coordinate(node(mu, 17), lut_eta_from_node(3, 6), lut_alpha_from_coordinate(node(r, 17)));
+            if (mu_value < 0.1)
             {
                 continue;
             }
@@ -663,9 +769,8 @@ TEST(LutGenerator, OtherSizesKeepTheNodeValues)
             // E_RT = E_T0 there. Table 3 holds E_RT / E_ggx of its own samples, so E_ggx comes
             // from an independent 2^16-sample estimate; measured |difference| up to 5.8e-4 with
             // 4096 samples per cell (8.3e-3 with 256).
-            const double e_ggx = estimate_lut_entry(
-                lut_table_ggx_albedo, std::sqrt(lut_mu_from_view_coordinate(node(mu, 17), lut_eta_from_node(3, 6))),
-                node(r, 17), 0.0, 1u << 16, 5);
+            const double e_ggx =
+                estimate_lut_entry(lut_table_ggx_albedo, std::sqrt(mu_value), node(r, 17), 0.0, 1u << 16, 5);
             const double difference = std::fabs(data[other.offset(lut_table_dielectric_interface) + cell] * e_ggx -
                                                 data[other.offset(lut_table_dielectric_transmission) + cell]);
             EXPECT_LE(difference, 2e-3);
