@@ -29,6 +29,9 @@ if [[ "${OPENPBR_SKIP_FORMAT:-0}" != 1 ]]; then
   "$repo_root/scripts/format-check.sh" || failed+=(format-check)
 fi
 if ((${#failed[@]})); then
+  # A fuzz finding again at the end, where a truncated CI log still shows it.
+  fuzz_finding="${OPENPBR_FUZZ_BUILD_DIR:-$repo_root/build-fuzz}/finding.txt"
+  [[ " ${failed[*]} " == *" ci_fuzz "* && -f "$fuzz_finding" ]] && cat "$fuzz_finding" >&2
   echo "test: failed: ${failed[*]}" >&2
   # ctest's own status when it failed (e.g. 8 for failed tests), 1 otherwise.
   exit $((ctest_status != 0 ? ctest_status : 1))

@@ -269,9 +269,13 @@ OPENPBR_FUNC float openpbr_ggx_lobe_dielectric_reflection_albedo(float mu, float
 // (n_o > n_b) at some angle, the reflectance jumps towards 1 past that critical angle, and a thin
 // band of the most tilted microfacets carries much of the mean: grouped estimates with 8-32
 // nodes gained up to 5 % of energy on the default coated film (coat 1.6 over film 1.4). There
-// the former estimate stays (per_node below): four nodes evaluated one by one for the
-// dielectric, the metal at the view; on that material it loses up to 11 % instead (README
-// "Known limits").
+// the former estimate stays (per_node below): four nodes evaluated one by one, for both bases;
+// on that material it loses up to 11 % instead (README "Known limits"). The metal was once
+// evaluated at the view only, which a lobe past the critical angle cannot bear: under a coat of
+// IOR 3 over a film of 1.5 on a base of F0 = 0 the filmed factor is 0 in red at normal incidence
+// and 1 (total reflection) for every microfacet beyond cos 0.94, so a rough anisotropic metal
+// seen head-on was selected with probability 1e-9 while it reflected, and a fuzz sample on its
+// highlight weighed 8.5e4 (fuzzer finding, fuzz/corpus/finding_filmed_metal_at_view.bin).
 // Measured against a 96 x 96-node average (docs/performance.md "The thin film's albedo
 // estimate"): largest / mean error of the dielectric's change, four nodes -> two groups: in air
 // 0.023 / 0.0026 -> 0.014 / 0.0014; under IOR 1.3 0.134 / 0.0063 -> 0.038 / 0.0034; the metal's
@@ -337,9 +341,9 @@ OPENPBR_FUNC OpenPBR_FresnelPair openpbr_base_film_estimate(OPENPBR_IN(OpenPBR_F
     }
     const float mean_cosine = weight_sum > 0.0f ? weighted_cosine_sum / weight_sum : view.z;
 
-    // Film evaluations at one call site: the two groups (below and above the mean cosine, both
-    // bases), or per node the dielectric and then the metal at the view.
-    const int evaluation_count = per_node ? node_count + 1 : 2;
+    // Film evaluations at one call site, both bases in each: the two groups (below and above the
+    // mean cosine), or the nodes one by one.
+    const int evaluation_count = per_node ? node_count : 2;
     vec3 dielectric_sum = vec3(0.0f);
     vec3 metal_sum = vec3(0.0f);
     float dielectric_weight_sum = 0.0f;
@@ -349,16 +353,11 @@ OPENPBR_FUNC OpenPBR_FresnelPair openpbr_base_film_estimate(OPENPBR_IN(OpenPBR_F
         float weight = 0.0f;
         float cosine = view.z;
         float path_spread = 0.0f;
-        bool with_dielectric = dielectric_filmed;
-        bool with_metal = metal_filmed;
         if (per_node)
         {
-            const bool at_view = evaluation == node_count;
-            const int node = at_view ? 0 : evaluation;
-            weight = at_view ? 1.0f : node_weight[node];
-            cosine = at_view ? view.z : node_cosine[node];
-            with_dielectric = dielectric_filmed && !at_view;
-            with_metal = metal_filmed && at_view;
+            // A lobe without any reflected node keeps them all at unit weight.
+            weight = weight_sum > 0.0f ? node_weight[evaluation] : 1.0f;
+            cosine = node_cosine[evaluation];
         }
         else
         {
@@ -387,16 +386,16 @@ OPENPBR_FUNC OpenPBR_FresnelPair openpbr_base_film_estimate(OPENPBR_IN(OpenPBR_F
                 path_spread = openpbr_safe_sqrt(path_squared_sum * inverse_weight - path_mean * path_mean);
             }
         }
-        if (weight > 0.0f && (with_dielectric || with_metal))
+        if (weight > 0.0f && (dielectric_filmed || metal_filmed))
         {
-            const OpenPBR_FresnelPair pair =
-                openpbr_fresnel_evaluate_base_pair_spread(untinted, with_dielectric, metal, with_metal, cosine, path_spread);
-            if (with_dielectric)
+            const OpenPBR_FresnelPair pair = openpbr_fresnel_evaluate_base_pair_spread(untinted, dielectric_filmed, metal,
+                                                                                       metal_filmed, cosine, path_spread);
+            if (dielectric_filmed)
             {
                 dielectric_sum += weight * (pair.first - vec3(openpbr_fresnel_dielectric(cosine, dielectric.eta)));
                 dielectric_weight_sum += weight;
             }
-            if (with_metal)
+            if (metal_filmed)
             {
                 metal_sum += weight * pair.second;
                 metal_weight_sum += weight;
