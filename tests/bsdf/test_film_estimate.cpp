@@ -284,6 +284,35 @@ TEST(FilmEstimateMirror, IsTheFilmAtTheView)
     }
 }
 
+// Where the estimate's formulas degenerate, in every regime: views at the horizon (cos 0 and
+// the tables' floor 1e-4, where no node may reflect and the nodes keep unit weight), the
+// roughest lobe and full anisotropy (alpha_b at its floor). The metal's filmed factor is a
+// reflectance in [0, 1] and the dielectric's change a difference of two, in [-1, 1].
+TEST(FilmEstimateDegenerate, StaysAReflectanceAtTheHorizonAndFullAnisotropy)
+{
+    for (const EstimateCase& c : estimate_cases())
+    {
+        const Lobe lobe = make_lobe(c);
+        for (const float view_cosine : {0.0f, 1e-4f})
+        {
+            for (const glm::vec2 alpha :
+                 {openpbr_ggx_alpha(1.0f, 0.0f), openpbr_ggx_alpha(1.0f, 1.0f), openpbr_ggx_alpha(c.roughness, 1.0f)})
+            {
+                const glm::vec3 view(std::sqrt(1.0f - view_cosine * view_cosine), 0.0f, view_cosine);
+                const OpenPBR_FresnelPair estimate =
+                    openpbr_base_film_estimate(lobe.dielectric, true, lobe.metal, true, view, alpha);
+                for (int channel = 0; channel < 3; ++channel)
+                {
+                    EXPECT_GE(estimate.second[channel], 0.0f) << c.name << " cos " << view_cosine;
+                    EXPECT_LE(estimate.second[channel], 1.0f) << c.name << " cos " << view_cosine;
+                    EXPECT_GE(estimate.first[channel], -1.0f) << c.name << " cos " << view_cosine;
+                    EXPECT_LE(estimate.first[channel], 1.0f) << c.name << " cos " << view_cosine;
+                }
+            }
+        }
+    }
+}
+
 // A factor that is not active contributes nothing.
 TEST(FilmEstimateMirror, InactiveFactorsAreZero)
 {
