@@ -192,6 +192,18 @@ OPENPBR_FUNC OpenPBR_Basis openpbr_flip_basis(OPENPBR_IN(OpenPBR_Basis) basis)
 // sample weights of 1e4 to 1e22, docs/stability.md). Dropping loses at most 1e-9 of the energy.
 #define OPENPBR_MIN_LOBE_PROBABILITY 1e-9f
 
+// Defensive floor of the metal's selection estimate (Hesterberg 1995, "Weighted average
+// importance sampling and defensive mixture distributions"), relative to the largest albedo its
+// lobe can reach (its weight times its Fresnel tint: F82-tint, filmed or not, stays within
+// [0, 1]), e.g. 1e-3. The estimate follows the Fresnel factor at the view (or the film's lobe
+// average); a rough metal of F0 near 0 seen head-on reads F0 there while its tilted
+// microfacets reflect the Schlick rise, so without a floor it was selected with probability
+// 1.2e-8 and a sample on its highlight weighed 1.2e4 (fuzzer finding,
+// fuzz/corpus/finding_black_metal_beside_pass_through.bin). With it a metal sample weighs at
+// most 1/floor times the sum of the estimates; the floor moves no probability of a metal whose
+// estimate exceeds 1/1000 of that bound (every base_color above 1e-3 seen head-on).
+#define OPENPBR_METAL_SELECTION_FLOOR 1e-3f
+
 OPENPBR_FUNC float openpbr_kept_probability(float probability, float cut) { return probability >= cut ? probability : 0.0f; }
 
 // Channel weights that steer lobe selection towards what a lobe adds to the current path: the
@@ -511,7 +523,9 @@ OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare_lobes_of(OPENPBR_IN(OpenPBR_Re
     const float coat_p = coat_weight > 0.0f ? under_fuzz * coat_weight * coat_albedo.x * white : 0.0f;
     const float specular_p =
         dielectric_weight > 0.0f ? openpbr_luminance(specular_estimate * under_reflected * channel) : 0.0f;
-    const float metal_p = metalness > 0.0f ? openpbr_luminance(metal_albedo * under_reflected * channel) : 0.0f;
+    const vec3 metal_selection_albedo =
+        max(metal_albedo, OPENPBR_METAL_SELECTION_FLOOR * bsdf.metal.weight * bsdf.metal.fresnel.tint);
+    const float metal_p = metalness > 0.0f ? openpbr_luminance(metal_selection_albedo * under_reflected * channel) : 0.0f;
     const float diffuse_p = openpbr_luminance(diffuse_estimate * under_reflected * channel);
     const float diffuse_transmission_p =
         openpbr_luminance(diffuse_transmission_estimate * bsdf.under_coat_transmitted * channel);
