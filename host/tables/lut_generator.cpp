@@ -291,6 +291,8 @@ double lut_step_width(const double alpha, const double eta)
                      : 0.0;
 }
 
+double lut_view_split(const double eta) { return eta < 1.0 ? 0.5 : double(OPENPBR_LUT_VIEW_SPLIT_ABOVE); }
+
 double lut_view_coordinate(const double mu, const double eta, const double alpha)
 {
     const double m = std::sqrt(std::clamp(mu, 0.0, 1.0));
@@ -298,7 +300,8 @@ double lut_view_coordinate(const double mu, const double eta, const double alpha
     const double width = lut_step_width(alpha, eta);
     if (width <= 0.0)
     {
-        return m < c ? 0.5 * m / c : 0.5 + 0.5 * (m - c) / (1.0 - c);
+        const double split = lut_view_split(eta);
+        return m < c ? split * m / c : split + (1.0 - split) * (m - c) / (1.0 - c);
     }
     const auto warp = [](const double distance, const double scale, const double slope) {
         return (std::asinh(distance / scale) + slope * distance) / (std::asinh(1.0 / scale) + slope);
@@ -312,7 +315,8 @@ double lut_mu_from_view_coordinate(const double u, const double eta, const doubl
 {
     const double c = std::sqrt(lut_critical_cosine(eta));
     const double v = std::clamp(u, 0.0, 1.0);
-    double m = v < 0.5 ? 2.0 * v * c : c + (2.0 * v - 1.0) * (1.0 - c);
+    const double split = lut_view_split(eta);
+    double m = v < split ? v / split * c : c + (v - split) / (1.0 - split) * (1.0 - c);
     if (lut_step_width(alpha, eta) > 0.0 && v != 0.5)
     {
         // The warped axis is increasing in m on each half: bisection on the half of v.

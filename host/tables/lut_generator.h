@@ -140,6 +140,7 @@ double lut_critical_cosine(double eta);  // openpbr_lut_critical_cosine in doubl
 // the view cosine at u, floored at 1e-4. Below eta = 1 the axis depends on alpha (the warp
 // towards the critical cosine on the scale of the step, slang/openpbr_lut.h).
 double lut_view_coordinate(double mu, double eta, double alpha);
+double lut_view_split(double eta);  // the coordinate of mu_c: 1/2 below eta = 1, OPENPBR_LUT_VIEW_SPLIT_ABOVE at and above
 double lut_mu_from_view_coordinate(double u, double eta, double alpha);
 double lut_alpha_from_coordinate(double r);       // max(r^2, 1e-4)
 double lut_mu_from_coordinate(double mu);         // max(mu^2, 1e-4): the axis is sqrt(mu)

@@ -427,7 +427,7 @@ TEST(LutGenerator, ViewCoordinateMatchesTheShadingLanguage)
             const float step_width =
                 openpbr::openpbr_lut_step_width(float(alpha), float(eta), openpbr::openpbr_lut_critical_cosine(float(eta)));
             EXPECT_EQ(step_width > 0.0f, eta < 1.0);
-            EXPECT_NEAR(lut_view_coordinate(critical, eta, alpha), 0.5, 1e-12);
+            EXPECT_NEAR(lut_view_coordinate(critical, eta, alpha), lut_view_split(eta), 1e-12);
             double previous = -1.0;
             for (const double offset : {-1.0, -0.3, -0.01, -0.001, -1e-4, 0.0, 1e-4, 0.001, 0.003, 0.01, 0.05, 0.3, 1.0})
             {
@@ -442,8 +442,9 @@ TEST(LutGenerator, ViewCoordinateMatchesTheShadingLanguage)
                 // at mu 0.34.
                 const float mu_float = float(mu);
                 const float eta_float = float(eta);
-                const float shading = openpbr::openpbr_lut_view_coordinate(
-                    mu_float, openpbr::openpbr_lut_critical_cosine(eta_float), step_width);
+                const float shading = openpbr::openpbr_lut_view_coordinates(mu_float, float(alpha), eta_float,
+                                                                            openpbr::openpbr_lut_critical_cosine(eta_float))
+                                          .x;
                 EXPECT_NEAR(lut_mu_from_view_coordinate(shading, eta_float, alpha), double(mu_float), 1e-4 * mu)
                     << "eta " << eta << ", alpha " << alpha << ", mu " << mu << ": coordinate " << shading << " against "
                     << coordinate;
