@@ -1,4 +1,5 @@
 #include "host/checks/furnace.h"
+#include "host/checks/stability.h"
 #include "host/support/directional_albedo.h"
 #include "host/support/random.h"
 
@@ -483,9 +484,21 @@ FurnaceEstimate estimate_furnace_albedo(const OpenPBR_ResolvedInputs& inputs, co
     return estimate;
 }
 
-std::vector<FurnaceRow> run_white_furnace(const FurnaceOptions& options)
+std::vector<FurnaceRow> run_white_furnace(const FurnaceOptions& options, std::vector<std::string>* skipped)
 {
+    const std::vector<std::string> paths = options.paths.empty() ? std::vector<std::string>{"cpu"} : options.paths;
+    const bool run_cpu = std::find(paths.begin(), paths.end(), "cpu") != paths.end();
     std::vector<FurnaceRow> rows;
+    // The rows GPU paths run: their configuration, side and view, and the case the stability
+    // runner gets.
+    struct GpuRow
+    {
+        const FurnaceConfig* config;
+        FurnaceSide side;
+        float cos_theta;
+    };
+    std::vector<GpuRow> gpu_rows;
+    std::vector<StabilityCase> gpu_cases;
     std::uint64_t seed = 1;
     for (const FurnaceConfig& config : white_furnace_configs())
     {
@@ -493,16 +506,87 @@ std::vector<FurnaceRow> run_white_furnace(const FurnaceOptions& options)
         {
             continue;
         }
+        const bool default_wavelengths = config.wavelengths_nm == vec3(OPENPBR_DEFAULT_RGB_WAVELENGTHS_NM);
         for (const FurnaceSide side : config.sides)
         {
             for (const float cos_theta : furnace_view_cosines(config))
             {
+                const vec3 view = furnace_view(config.inputs, cos_theta, side);
+                if (run_cpu)
+                {
+                    FurnaceRow row;
+                    row.name = config.name + side_suffix(side);
+                    row.cos_theta = cos_theta;
+                    row.estimate = estimate_furnace_albedo(config.inputs, view, options.samples, seed, config.exterior_ior,
+                                                           config.wavelengths_nm);
+                    rows.push_back(row);
+                }
+                ++seed;
+                if (default_wavelengths)
+                {
+                    StabilityCase gpu_case;
+                    gpu_case.name = config.name + side_suffix(side);
+                    gpu_case.inputs = config.inputs;
+                    gpu_case.view = view;
+                    gpu_case.exterior_ior = config.exterior_ior;
+                    gpu_cases.push_back(gpu_case);
+                    gpu_rows.push_back({&config, side, cos_theta});
+                }
+            }
+        }
+    }
+    for (const std::string& path : paths)
+    {
+        if (path == "cpu" || gpu_cases.empty())
+        {
+            continue;
+        }
+        StabilityOptions stability;
+        stability.samples_per_case = static_cast<std::size_t>(options.samples);
+        stability.gpu_samples_per_case = static_cast<std::size_t>(options.samples);
+        stability.kernel_directory = options.kernel_directory;
+        stability.paths = {path};
+        const StabilityReport report = run_stability(gpu_cases, stability);
+        for (const StabilityPathResult& result : report.paths)
+        {
+            if (!result.executed)
+            {
+                if (skipped != nullptr)
+                {
+                    skipped->push_back(path + ": " + result.note);
+                }
+                continue;
+            }
+            for (std::size_t index = 0; index < result.cases.size(); ++index)
+            {
+                const StabilityCaseResult& gpu = result.cases[index];
                 FurnaceRow row;
-                row.name = config.name + side_suffix(side);
-                row.cos_theta = cos_theta;
-                row.estimate = estimate_furnace_albedo(config.inputs, furnace_view(config.inputs, cos_theta, side),
-                                                       options.samples, seed++, config.exterior_ior, config.wavelengths_nm);
-                const FurnaceBand band = furnace_band(config, side, cos_theta);
+                row.path = path;
+                row.name = gpu.name;
+                row.cos_theta = gpu_rows[index].cos_theta;
+                row.estimate.samples = gpu.samples;
+                row.estimate.max_weight = gpu.max_weight;
+                for (int channel = 0; channel < 3; ++channel)
+                {
+                    row.estimate.albedo[channel] = gpu.mean_weight[channel];
+                    row.estimate.standard_error[channel] = gpu.mean_weight_standard_error;
+                }
+                rows.push_back(row);
+            }
+        }
+    }
+    // Every row against its configuration's band at its view.
+    for (FurnaceRow& row : rows)
+    {
+        for (const FurnaceConfig& config : white_furnace_configs())
+        {
+            for (const FurnaceSide side : config.sides)
+            {
+                if (config.name + side_suffix(side) != row.name)
+                {
+                    continue;
+                }
+                const FurnaceBand band = furnace_band(config, side, row.cos_theta);
                 row.known_limit = band.known_limit;
                 for (int channel = 0; channel < 3; ++channel)
                 {
@@ -510,7 +594,6 @@ std::vector<FurnaceRow> run_white_furnace(const FurnaceOptions& options)
                         row.within_tolerance &&
                         furnace_albedo_within(band, row.estimate.albedo[channel], row.estimate.standard_error[channel]);
                 }
-                rows.push_back(row);
             }
         }
     }
@@ -523,7 +606,8 @@ nlohmann::json furnace_to_json(const std::vector<FurnaceRow>& rows)
     for (const FurnaceRow& row : rows)
     {
         const FurnaceEstimate& e = row.estimate;
-        configs.push_back({{"name", row.name},
+        configs.push_back({{"path", row.path},
+                           {"name", row.name},
                            {"cos_theta", row.cos_theta},
                            {"albedo", {e.albedo[0], e.albedo[1], e.albedo[2]}},
                            {"standard_error", {e.standard_error[0], e.standard_error[1], e.standard_error[2]}},
@@ -548,11 +632,11 @@ std::string furnace_to_text(const std::vector<FurnaceRow>& rows)
     {
         const FurnaceEstimate& e = row.estimate;
         const double error = std::max({e.standard_error[0], e.standard_error[1], e.standard_error[2]});
-        text << std::left << std::setw(44) << row.name << std::right << std::setw(8) << std::setprecision(3) << row.cos_theta
-             << std::fixed << std::setprecision(5) << std::setw(10) << e.albedo[0] << std::setw(10) << e.albedo[1]
-             << std::setw(10) << e.albedo[2] << std::setw(10) << error << std::setprecision(2) << std::setw(12)
-             << e.max_weight << "  " << (row.within_tolerance ? "ok" : "FAIL") << (row.known_limit ? " (known limit)" : "")
-             << "\n"
+        text << std::left << std::setw(44) << (row.path == "cpu" ? row.name : row.path + ": " + row.name) << std::right
+             << std::setw(8) << std::setprecision(3) << row.cos_theta << std::fixed << std::setprecision(5) << std::setw(10)
+             << e.albedo[0] << std::setw(10) << e.albedo[1] << std::setw(10) << e.albedo[2] << std::setw(10) << error
+             << std::setprecision(2) << std::setw(12) << e.max_weight << "  " << (row.within_tolerance ? "ok" : "FAIL")
+             << (row.known_limit ? " (known limit)" : "") << "\n"
              << std::defaultfloat;
     }
     return text.str();

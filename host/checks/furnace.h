@@ -125,18 +125,28 @@ struct FurnaceOptions
 {
     std::uint64_t samples = 1u << 20;  // per configuration, view and side, e.g. 1048576
     std::string name_filter;           // substring of the configuration name; empty = all
+    // Paths to run, e.g. {"cpu", "slang-spirv"}: "cpu" is the CPU build (estimate_furnace_albedo);
+    // any other name is a GPU path of the conformance kernel, run through the stability runner
+    // (host/checks/stability.h: random u, the mean of the sample weights). Empty = {"cpu"}.
+    std::vector<std::string> paths;
+    std::string kernel_directory;  // compiled kernels for GPU paths, e.g. build/kernels
 };
 
 struct FurnaceRow
 {
-    std::string name;  // configuration name, "_inside" appended for the inside view
+    std::string path = "cpu";  // "cpu" or the GPU path, e.g. "slang-spirv"
+    std::string name;          // configuration name, "_inside" appended for the inside view
     float cos_theta = 1.0f;
     FurnaceEstimate estimate;
     bool within_tolerance = true;  // the configuration's expectation holds at this view
     bool known_limit = false;      // held to a band of furnace_known_limits()
 };
 
-std::vector<FurnaceRow> run_white_furnace(const FurnaceOptions& options);
+// GPU paths take the rows at the default wavelengths (the conformance kernel's queries carry
+// none, so the dispersive rows stay CPU-only), and the standard error of a GPU row is that of its
+// largest channel, for every channel. A GPU path that cannot run here (no device) gives no rows
+// and is listed in `skipped` with the reason, when given.
+std::vector<FurnaceRow> run_white_furnace(const FurnaceOptions& options, std::vector<std::string>* skipped = nullptr);
 
 // {"configs": [{"name": s, "cos_theta": c, "albedo": [r, g, b], "standard_error": [...],
 //  "max_weight": w, "samples": n, "pass": b}], "tolerance": ..., "max_albedo": ...}

@@ -1,7 +1,8 @@
 // `openpbr furnace`: the white furnace of host/checks/furnace.h as a table and, with --json FILE,
 // as {"configs": [{"name": s, "cos_theta": c, "albedo": [r, g, b], ...}]}. Exit status 0 when
 // every configuration is within its tolerance, 2 when one is not, 1 on errors (e.g. an
-// unwritable JSON path, or a --filter that matches nothing).
+// unwritable JSON path, a --filter that matches nothing, or an unknown path). --paths runs the
+// rows on GPU paths too (a path without a device is reported as not executed).
 #include <iostream>
 #include <memory>
 #include <stdexcept>
@@ -24,7 +25,12 @@ struct FurnaceSettings
 
 int run_furnace(const FurnaceSettings& settings)
 {
-    const std::vector<FurnaceRow> rows = run_white_furnace(settings.furnace);
+    std::vector<std::string> skipped;
+    const std::vector<FurnaceRow> rows = run_white_furnace(settings.furnace, &skipped);
+    for (const std::string& path : skipped)
+    {
+        std::cout << path << "\n";
+    }
     if (rows.empty())
     {
         throw std::runtime_error("no configuration matches --filter '" + settings.furnace.name_filter + "'");
@@ -48,7 +54,7 @@ int run_furnace(const FurnaceSettings& settings)
 
 }  // namespace
 
-CLI::App* add_furnace_subcommand(CLI::App& parent, const CommandContext&)
+CLI::App* add_furnace_subcommand(CLI::App& parent, const CommandContext& context)
 {
     auto settings = std::make_shared<FurnaceSettings>();
     CLI::App* command = parent.add_subcommand("furnace", "white furnace: directional albedo of white configurations");
@@ -58,7 +64,15 @@ CLI::App* add_furnace_subcommand(CLI::App& parent, const CommandContext&)
         ->check(CLI::Range(std::uint64_t(1024), std::uint64_t(1) << 32));
     command->add_option("--filter", settings->furnace.name_filter,
                         "only configurations whose name contains this, e.g. glass");
-    command->callback([settings]() { run_command([&]() { return run_furnace(*settings); }); });
+    command->add_option("--paths", settings->furnace.paths,
+                        "paths to run, e.g. cpu slang-spirv (default: cpu; GPU paths take the rows at the default "
+                        "wavelengths)");
+    command->callback([settings, context]() {
+        run_command([&]() {
+            settings->furnace.kernel_directory = context.kernel_directory;
+            return run_furnace(*settings);
+        });
+    });
     return command;
 }
 

@@ -1,0 +1,89 @@
+// The white furnace on every GPU path (issue: the furnace targets hold on the CPU and every
+// executed GPU path): `openpbr furnace --paths` runs the configurations through the conformance
+// kernel (host/checks/furnace.h). Rows: the sweep's rough glass of relative IOR 1, 1.001, 1.01,
+// 1.05, 1.2 and 1.5 (the configurations named sweep_glass_eta1*: the index-matched limit and the
+// grazing rows the tables' view axis resolves), roughness 0.05-1, both sides (from inside the
+// relative IOR is below 1), view cos 1-0.001, 2^15 samples each: 240 rows per path, one pipeline. Each GPU row must be
+// within its configuration's band (3 standard errors, as on the CPU) and agree with the CPU row within 5 combined standard
+// errors plus 1e-4 (the two use different random streams; the conformance batch has the same queries agree to 7.3e-6
+// relative on lavapipe). A path without a device is skipped with the reason.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "host/checks/conformance.h"
+#include "host/checks/furnace.h"
+
+namespace {
+
+using openpbr::host::FurnaceOptions;
+using openpbr::host::FurnaceRow;
+
+class FurnacePath : public ::testing::TestWithParam<std::string>
+{
+};
+
+TEST_P(FurnacePath, RowsWithinTheirBandsAndAgreeWithTheCpu)
+{
+    std::size_t compared = 0;
+    for (const char* filter : {"sweep_glass_eta1"})
+    {
+        FurnaceOptions options;
+        options.samples = 1u << 15;
+        options.name_filter = filter;
+        options.paths = {"cpu", GetParam()};
+        options.kernel_directory = OPENPBR_KERNEL_DIR;
+        std::vector<std::string> skipped;
+        const std::vector<FurnaceRow> rows = openpbr::host::run_white_furnace(options, &skipped);
+        if (!skipped.empty())
+        {
+            GTEST_SKIP() << skipped.front();
+        }
+        std::map<std::pair<std::string, float>, const FurnaceRow*> cpu_rows;
+        for (const FurnaceRow& row : rows)
+        {
+            if (row.path == "cpu")
+            {
+                cpu_rows[{row.name, row.cos_theta}] = &row;
+            }
+        }
+        ASSERT_FALSE(cpu_rows.empty()) << filter;
+        std::size_t gpu_row_count = 0;
+        for (const FurnaceRow& row : rows)
+        {
+            if (row.path == "cpu")
+            {
+                continue;
+            }
+            ++gpu_row_count;
+            EXPECT_TRUE(row.within_tolerance) << row.path << ": " << row.name << " at cos " << row.cos_theta << ": "
+                                              << row.estimate.albedo[0] << " +- " << row.estimate.standard_error[0];
+            const FurnaceRow& cpu = *cpu_rows.at({row.name, row.cos_theta});
+            for (int channel = 0; channel < 3; ++channel)
+            {
+                const double combined =
+                    std::hypot(row.estimate.standard_error[channel], cpu.estimate.standard_error[channel]);
+                EXPECT_NEAR(row.estimate.albedo[channel], cpu.estimate.albedo[channel], 5.0 * combined + 1e-4)
+                    << row.path << ": " << row.name << " at cos " << row.cos_theta << ", channel " << channel;
+            }
+            ++compared;
+        }
+        EXPECT_EQ(gpu_row_count, cpu_rows.size()) << filter;
+    }
+    EXPECT_GT(compared, 0u);
+}
+
+std::vector<std::string> gpu_paths() { return openpbr::host::known_conformance_paths(); }
+
+INSTANTIATE_TEST_SUITE_P(AllGpuPaths, FurnacePath, ::testing::ValuesIn(gpu_paths()), [](const auto& info) {
+    std::string name = info.param;
+    std::replace(name.begin(), name.end(), '-', '_');
+    return name;
+});
+
+}  // namespace
