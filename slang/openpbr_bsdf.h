@@ -523,9 +523,13 @@ OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare_lobes_of(OPENPBR_IN(OpenPBR_Re
     const float coat_p = coat_weight > 0.0f ? under_fuzz * coat_weight * coat_albedo.x * white : 0.0f;
     const float specular_p =
         dielectric_weight > 0.0f ? openpbr_luminance(specular_estimate * under_reflected * channel) : 0.0f;
-    const vec3 metal_selection_albedo =
-        max(metal_albedo, OPENPBR_METAL_SELECTION_FLOOR * bsdf.metal.weight * bsdf.metal.fresnel.tint);
-    const float metal_p = metalness > 0.0f ? openpbr_luminance(metal_selection_albedo * under_reflected * channel) : 0.0f;
+    float metal_p = 0.0f;
+    if (metalness > 0.0f)
+    {
+        const vec3 metal_selection_albedo =
+            max(metal_albedo, OPENPBR_METAL_SELECTION_FLOOR * bsdf.metal.weight * bsdf.metal.fresnel.tint);
+        metal_p = openpbr_luminance(metal_selection_albedo * under_reflected * channel);
+    }
     const float diffuse_p = openpbr_luminance(diffuse_estimate * under_reflected * channel);
     const float diffuse_transmission_p =
         openpbr_luminance(diffuse_transmission_estimate * bsdf.under_coat_transmitted * channel);
