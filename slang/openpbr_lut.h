@@ -34,20 +34,22 @@
 //          mu_c = sqrt(1 - min(eta, 1/eta)^2) always lies at a node u_mu = S:
 //          u_mu = S sqrt(mu / mu_c) below it, S + (1 - S) (sqrt(mu) - sqrt(mu_c)) / (1 - sqrt(mu_c))
 //          above it; S = 1/2 below eta = 1, OPENPBR_LUT_VIEW_SPLIT_ABOVE = 3/4 at and above it.
-//          Above eta = 1 nothing steps at mu_c seen from outside, while a near-mirror lobe's
-//          shadowing bends at grazing views (mu about 2 alpha): with S = 1/2 the tables read E_R
-//          of smooth glass (roughness 0.05) 0.006 low at cos 0.02 and the white furnace gained
-//          0.6 % there at relative IOR 1.5-3; with 3/4 (spacing in sqrt(mu) below mu_c 2/3 of
-//          before) 1.0029-1.0039; the sweep's rows at cos 0.001 lose at most 1.1 % (was 5.3 %:
-//          relative IOR 1.05, roughness 1, 0.947 -> 1.000) and gain at most 0.43 % (was 0.37 %);
-//          the largest cost above mu_c is rough glass near index matching from inside at cos 0.5
-//          (relative IOR 1.01, roughness 1: 0.9991 -> 0.9970). Why: below eta = 1 total internal reflection sets in at the
-//          view cosine mu_c (Snell's law, sin(theta) = eta), a kink in every albedo that moves across the whole mu axis as
-//          eta goes from 1/3 to 1; above eta = 1 the Fresnel factor at grazing views is a function of mu / sqrt(eta^2 - 1)
-//          (Fresnel's equations with cos_t^2 = 1 - (1 - mu^2) / eta^2), whose scale is the same mu_c to first order in eta
-//          - 1. On a fixed mu axis both fall inside a cell of one eta node and outside that of the next, and interpolating
+//          Why mu_c: below eta = 1 total internal reflection sets in at the view cosine mu_c
+//          (Snell's law, sin(theta) = eta), a kink in every albedo that moves across the whole mu
+//          axis as eta goes from 1/3 to 1; above eta = 1 the Fresnel factor at grazing views is a
+//          function of mu / sqrt(eta^2 - 1) (Fresnel's equations with cos_t^2 = 1 - (1 - mu^2) /
+//          eta^2), whose scale is the same mu_c to first order in eta - 1. On a fixed mu axis both
+//          fall inside a cell of one eta node and outside that of the next, and interpolating
 //          along eta mixed the two (errors up to 0.97 in E_R at eta 0.999); on this axis the
 //          nodes of neighbouring eta slices sit at the same fraction of mu_c.
+//          Why S = 3/4 above eta = 1: seen from outside nothing steps at mu_c there, while a
+//          near-mirror lobe's shadowing bends at grazing views (mu about 2 alpha). With S = 1/2
+//          the tables read E_R of smooth glass (roughness 0.05) 0.006 low at cos 0.02 and the
+//          white furnace gained 0.6 % there at relative IOR 1.5-3; with 3/4 (spacing in sqrt(mu)
+//          below mu_c 2/3 of before) 1.0029-1.0039. The sweep's rows at cos 0.001 lose at most
+//          1.1 % (was 5.3 %: relative IOR 1.05, roughness 1, 0.947 -> 1.000) and gain at most
+//          0.43 % (was 0.37 %); the largest cost above mu_c is rough glass near index matching
+//          from inside at cos 0.5 (relative IOR 1.01, roughness 1: 0.9991 -> 0.9970).
 //          Below eta = 1 each half is warped further towards mu_c on the scale of the step
 //          itself (openpbr_lut_step_warp): a microfacet tilted by delta (about alpha for GGX)
 //          meets the view at the critical angle when the view is delta away from it, so the

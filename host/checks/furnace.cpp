@@ -488,16 +488,27 @@ std::vector<FurnaceRow> run_white_furnace(const FurnaceOptions& options, std::ve
 {
     const std::vector<std::string> paths = options.paths.empty() ? std::vector<std::string>{"cpu"} : options.paths;
     const bool run_cpu = std::find(paths.begin(), paths.end(), "cpu") != paths.end();
-    std::vector<FurnaceRow> rows;
-    // The rows GPU paths run: their configuration, side and view, and the case the stability
-    // runner gets.
-    struct GpuRow
+    // A row's configuration, side and view, which give its band.
+    struct RowKey
     {
         const FurnaceConfig* config;
         FurnaceSide side;
         float cos_theta;
     };
-    std::vector<GpuRow> gpu_rows;
+    const auto finish_row = [](FurnaceRow& row, const RowKey& key) {
+        row.name = key.config->name + side_suffix(key.side);
+        row.cos_theta = key.cos_theta;
+        const FurnaceBand band = furnace_band(*key.config, key.side, key.cos_theta);
+        row.known_limit = band.known_limit;
+        for (int channel = 0; channel < 3; ++channel)
+        {
+            row.within_tolerance = row.within_tolerance && furnace_albedo_within(band, row.estimate.albedo[channel],
+                                                                                 row.estimate.standard_error[channel]);
+        }
+    };
+    std::vector<FurnaceRow> rows;
+    // The rows GPU paths run (their keys, and the cases the stability runner gets).
+    std::vector<RowKey> gpu_keys;
     std::vector<StabilityCase> gpu_cases;
     std::uint64_t seed = 1;
     for (const FurnaceConfig& config : white_furnace_configs())
@@ -511,14 +522,14 @@ std::vector<FurnaceRow> run_white_furnace(const FurnaceOptions& options, std::ve
         {
             for (const float cos_theta : furnace_view_cosines(config))
             {
+                const RowKey key{&config, side, cos_theta};
                 const vec3 view = furnace_view(config.inputs, cos_theta, side);
                 if (run_cpu)
                 {
                     FurnaceRow row;
-                    row.name = config.name + side_suffix(side);
-                    row.cos_theta = cos_theta;
                     row.estimate = estimate_furnace_albedo(config.inputs, view, options.samples, seed, config.exterior_ior,
                                                            config.wavelengths_nm);
+                    finish_row(row, key);
                     rows.push_back(row);
                 }
                 ++seed;
@@ -530,7 +541,7 @@ std::vector<FurnaceRow> run_white_furnace(const FurnaceOptions& options, std::ve
                     gpu_case.view = view;
                     gpu_case.exterior_ior = config.exterior_ior;
                     gpu_cases.push_back(gpu_case);
-                    gpu_rows.push_back({&config, side, cos_theta});
+                    gpu_keys.push_back(key);
                 }
             }
         }
@@ -562,8 +573,6 @@ std::vector<FurnaceRow> run_white_furnace(const FurnaceOptions& options, std::ve
                 const StabilityCaseResult& gpu = result.cases[index];
                 FurnaceRow row;
                 row.path = path;
-                row.name = gpu.name;
-                row.cos_theta = gpu_rows[index].cos_theta;
                 row.estimate.samples = gpu.samples;
                 row.estimate.max_weight = gpu.max_weight;
                 for (int channel = 0; channel < 3; ++channel)
@@ -571,29 +580,8 @@ std::vector<FurnaceRow> run_white_furnace(const FurnaceOptions& options, std::ve
                     row.estimate.albedo[channel] = gpu.mean_weight[channel];
                     row.estimate.standard_error[channel] = gpu.mean_weight_standard_error;
                 }
+                finish_row(row, gpu_keys[index]);
                 rows.push_back(row);
-            }
-        }
-    }
-    // Every row against its configuration's band at its view.
-    for (FurnaceRow& row : rows)
-    {
-        for (const FurnaceConfig& config : white_furnace_configs())
-        {
-            for (const FurnaceSide side : config.sides)
-            {
-                if (config.name + side_suffix(side) != row.name)
-                {
-                    continue;
-                }
-                const FurnaceBand band = furnace_band(config, side, row.cos_theta);
-                row.known_limit = band.known_limit;
-                for (int channel = 0; channel < 3; ++channel)
-                {
-                    row.within_tolerance =
-                        row.within_tolerance &&
-                        furnace_albedo_within(band, row.estimate.albedo[channel], row.estimate.standard_error[channel]);
-                }
             }
         }
     }

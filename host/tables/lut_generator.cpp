@@ -317,11 +317,11 @@ double lut_mu_from_view_coordinate(const double u, const double eta, const doubl
     const double v = std::clamp(u, 0.0, 1.0);
     const double split = lut_view_split(eta);
     double m = v < split ? v / split * c : c + (v - split) / (1.0 - split) * (1.0 - c);
-    if (lut_step_width(alpha, eta) > 0.0 && v != 0.5)
+    if (lut_step_width(alpha, eta) > 0.0 && v != split)
     {
         // The warped axis is increasing in m on each half: bisection on the half of v.
-        double low = v < 0.5 ? 0.0 : c;
-        double high = v < 0.5 ? c : 1.0;
+        double low = v < split ? 0.0 : c;
+        double high = v < split ? c : 1.0;
         for (int iteration = 0; iteration < 100; ++iteration)
         {
             const double middle = 0.5 * (low + high);

@@ -467,8 +467,9 @@ TEST(BsdfBasis, PreparedBasisIsOrthonormalForDegenerateGeometry)
 // with coat_darkening 0.
 // A metal's samples stay bounded however far its albedo estimate (F82 at the view) falls below
 // what its lobe reflects: metals of F0 0 to 1e-3 (where the estimate is F0 but tilted
-// microfacets reflect the Schlick rise), rough and anisotropic, alone, beside a pass-through and
-// under a coat, at views from head-on to grazing. Every sample drawn from the metal's selection
+// microfacets reflect the Schlick rise), from a mirror (roughness 0) to roughness 1, anisotropic
+// up to 1, alone, beside a pass-through and under a coat, at views from head-on to the horizon
+// (cos 0): 576 metals. Every sample drawn from the metal's selection
 // window (a 48 x 48 grid of directions) weighs at most 1 / OPENPBR_METAL_SELECTION_FLOOR = 1000,
 // the floor's guarantee (the sum of the selection estimates is at most 1 here). Measured largest
 // weight: 1.87 (F0 0, roughness 0.3, opacity 0.6, view cos 0.5); without the floor 2.9e4 (F0
@@ -479,13 +480,13 @@ TEST(BsdfBasics, MetalSamplesStayBoundedWhereItsEstimateMissesTheGrazingRise)
     std::string largest_case;
     for (const float f0 : {0.0f, 1.4e-8f, 1e-5f, 1e-3f})
     {
-        for (const float roughness : {0.3f, 0.8f, 1.0f})
+        for (const float roughness : {0.0f, 0.3f, 0.8f, 1.0f})
         {
             for (const float anisotropy : {0.0f, 0.8f, 1.0f})
             {
                 for (const int layering : {0, 1, 2})  // alone, opacity 0.6, under a coat
                 {
-                    for (const float view_cosine : {1.0f, 0.5f, 0.1f})
+                    for (const float view_cosine : {1.0f, 0.5f, 0.1f, 0.0f})
                     {
                         OpenPBR_ResolvedInputs inputs = openpbr_make_default_resolved_inputs();
                         inputs.base_weight = 1.0f;

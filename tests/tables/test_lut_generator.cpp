@@ -428,6 +428,9 @@ TEST(LutGenerator, ViewCoordinateMatchesTheShadingLanguage)
                 openpbr::openpbr_lut_step_width(float(alpha), float(eta), openpbr::openpbr_lut_critical_cosine(float(eta)));
             EXPECT_EQ(step_width > 0.0f, eta < 1.0);
             EXPECT_NEAR(lut_view_coordinate(critical, eta, alpha), lut_view_split(eta), 1e-12);
+            // mu_c is a node of the axis (the split a whole number of cells).
+            const double split_cells = lut_view_split(eta) * (OPENPBR_LUT_3D_SIZE - 1);
+            EXPECT_EQ(split_cells, std::round(split_cells)) << "eta " << eta;
             double previous = -1.0;
             for (const double offset : {-1.0, -0.3, -0.01, -0.001, -1e-4, 0.0, 1e-4, 0.001, 0.003, 0.01, 0.05, 0.3, 1.0})
             {
