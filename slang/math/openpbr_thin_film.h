@@ -234,7 +234,8 @@ struct OpenPBR_ThinFilmStack
     float outside_admittance_s;  // n_o cos_o
     float outside_admittance_p;  // cos_o / n_o
     vec2 base_admittance_s;      // N cos_b
-    vec2 base_admittance_p;      // cos_b / N
+    vec2 base_ior_squared;       // N^2 (the p admittance cos_b / N = N cos_b / N^2 is formed only
+                                 // where the film is evanescent: one complex division saved per stack)
 };
 
 // Series data of one polarization from the two interfaces' Fresnel coefficients written as
@@ -294,8 +295,7 @@ OPENPBR_FUNC OpenPBR_ThinFilmStack openpbr_thin_film_stack(OPENPBR_IN(OpenPBR_Th
     stack.outside_admittance_s = n_o * cos_o;
     stack.outside_admittance_p = cos_o / n_o;
     stack.base_admittance_s = base_normal_term;
-    // cos_b / N = N cos_b / N^2.
-    stack.base_admittance_p = openpbr_complex_divide(base_normal_term, base_ior_squared);
+    stack.base_ior_squared = base_ior_squared;
     // s: r_ij = (n_i cos_i - n_j cos_j) / (n_i cos_i + n_j cos_j);
     // p: r_ij = (n_j cos_i - n_i cos_j) / (n_j cos_i + n_i cos_j), with the film -> base pair
     // multiplied through by N so that only N^2 and N cos_b appear.
@@ -346,9 +346,10 @@ OPENPBR_FUNC float openpbr_thin_film_evanescent_reflectance(OPENPBR_IN(OpenPBR_T
     const float s_common = k0_d * tanh_ratio;
     const float r_s = openpbr_thin_film_exact_polarization(1.0f, s_common, s_common * stack.film_normal_term,
                                                            stack.outside_admittance_s, stack.base_admittance_s);
-    const float r_p = openpbr_thin_film_exact_polarization(1.0f, s_common * stack.film_ior_squared,
-                                                           s_common * stack.film_normal_term / stack.film_ior_squared,
-                                                           stack.outside_admittance_p, stack.base_admittance_p);
+    // cos_b / N = N cos_b / N^2.
+    const float r_p = openpbr_thin_film_exact_polarization(
+        1.0f, s_common * stack.film_ior_squared, s_common * stack.film_normal_term / stack.film_ior_squared,
+        stack.outside_admittance_p, openpbr_complex_divide(stack.base_admittance_s, stack.base_ior_squared));
     return 0.5f * (r_s + r_p);
 }
 
@@ -367,9 +368,9 @@ OPENPBR_FUNC OpenPBR_ThinFilmLobePhase openpbr_thin_film_lobe_phase(float optica
     // Half the phase, reduced to [0, pi): the phasor and 1 - phasor are then built from
     // sin and cos of it, 1 - e^{i phi} = 2 sin^2(phi/2) - i sin(phi).
     const float cycles = optical_path_difference_um * nu;
-    const float half_phase = OPENPBR_PI * fract(cycles);
-    const float sine = sin(half_phase);
-    const float cosine = cos(half_phase);
+    const vec2 half_phase_sine_cosine = openpbr_sin_cos_pi(fract(cycles));
+    const float sine = half_phase_sine_cosine.x;
+    const float cosine = half_phase_sine_cosine.y;
     const float two_sine_squared = 2.0f * sine * sine;
     const float sine_phase = 2.0f * sine * cosine;
     // tau^2 = (2 pi)^2 (OPD^2 sigma^2 + spread^2 nu^2): the phase variance over the spectral
@@ -564,20 +565,64 @@ OPENPBR_FUNC vec3 openpbr_thin_film_harmonic_sum(OPENPBR_IN(OpenPBR_ThinFilmPola
     return vec3(polarization.mean) + (2.0f * polarization.amplitude) * sum;
 }
 
-// Polarization-averaged reflectance of one stack in all three channels (a conductor's channel
-// keeps its own component): the harmonic sums, plus the tail lobe by lobe where it matters. An
+// One channel's harmonics H_c(m), m = 1 .. 4 in x .. w: what a conductor's stack reads, since
+// each of its channels has its own base (summing all three there and keeping one cost twice
+// the sum).
+struct OpenPBR_ThinFilmChannelHarmonics
+{
+    vec4 real;
+    vec4 imaginary;
+};
+
+OPENPBR_FUNC OpenPBR_ThinFilmChannelHarmonics openpbr_thin_film_channel_harmonics(OPENPBR_IN(OpenPBR_ThinFilmHarmonics)
+                                                                                      harmonics,
+                                                                                  int channel)
+{
+    OpenPBR_ThinFilmChannelHarmonics result;
+    result.real = vec4(
+        openpbr_thin_film_channel_of(harmonics.real_1, channel), openpbr_thin_film_channel_of(harmonics.real_2, channel),
+        openpbr_thin_film_channel_of(harmonics.real_3, channel), openpbr_thin_film_channel_of(harmonics.real_4, channel));
+    result.imaginary = vec4(openpbr_thin_film_channel_of(harmonics.imaginary_1, channel),
+                            openpbr_thin_film_channel_of(harmonics.imaginary_2, channel),
+                            openpbr_thin_film_channel_of(harmonics.imaginary_3, channel),
+                            openpbr_thin_film_channel_of(harmonics.imaginary_4, channel));
+    return result;
+}
+
+// mean + 2 A sum_{m=1..4} Re(rho^m H_c(m)) for one channel.
+OPENPBR_FUNC float openpbr_thin_film_channel_harmonic_sum(OPENPBR_IN(OpenPBR_ThinFilmPolarization) polarization,
+                                                          OPENPBR_IN(OpenPBR_ThinFilmChannelHarmonics) harmonics)
+{
+    const vec2 rho_2 = openpbr_complex_multiply(polarization.rho, polarization.rho);
+    const vec2 rho_3 = openpbr_complex_multiply(rho_2, polarization.rho);
+    const vec2 rho_4 = openpbr_complex_multiply(rho_2, rho_2);
+    const float sum = dot(vec4(polarization.rho.x, rho_2.x, rho_3.x, rho_4.x), harmonics.real) -
+                      dot(vec4(polarization.rho.y, rho_2.y, rho_3.y, rho_4.y), harmonics.imaginary);
+    return polarization.mean + 2.0f * polarization.amplitude * sum;
+}
+
+// Polarization-averaged reflectance of one stack in all three channels (channel -1, a
+// dielectric base), or in one channel 0-2 (a conductor's stack; the result then holds that
+// channel's value in every component, and only the caller's channel is meaningful): the
+// harmonic sums, plus the tail lobe by lobe where it matters. An
 // evanescent film has no fringes: each lobe is evaluated exactly at its centre instead (the
 // reflectance is smooth in wavelength there). Both per-lobe cases share one loop, whose body is
 // compiled once (llvmpipe unrolls it; a second loop cost 25 % more compile time).
 OPENPBR_FUNC vec3 openpbr_thin_film_stack_reflectance(OPENPBR_IN(OpenPBR_ThinFilmStack) stack,
-                                                      OPENPBR_IN(OpenPBR_ThinFilmHarmonics) harmonics)
+                                                      OPENPBR_IN(OpenPBR_ThinFilmHarmonics) harmonics, int channel)
 {
     const bool evanescent = stack.film_is_evanescent;
     vec3 rgb = vec3(0.0f);
-    if (!evanescent)
+    if (!evanescent && channel < 0)
     {
         rgb =
             0.5f * (openpbr_thin_film_harmonic_sum(stack.s, harmonics) + openpbr_thin_film_harmonic_sum(stack.p, harmonics));
+    }
+    else if (!evanescent)
+    {
+        const OpenPBR_ThinFilmChannelHarmonics channel_harmonics = openpbr_thin_film_channel_harmonics(harmonics, channel);
+        rgb = vec3(0.5f * (openpbr_thin_film_channel_harmonic_sum(stack.s, channel_harmonics) +
+                           openpbr_thin_film_channel_harmonic_sum(stack.p, channel_harmonics)));
     }
     if (evanescent ||
         max(stack.s.tail_bound, stack.p.tail_bound) * harmonics.largest_tail_damping > OPENPBR_THIN_FILM_TRUNCATION_ERROR)
@@ -665,7 +710,7 @@ OPENPBR_FUNC OpenPBR_ThinFilmBasePair openpbr_thin_film_fresnel_bases(OPENPBR_IN
                                                     openpbr_thin_film_channel_of(base_k, channel));
         }
         const OpenPBR_ThinFilmStack stack = openpbr_thin_film_stack(inputs, base.ior_squared, base.normal_term);
-        const vec3 rgb = openpbr_thin_film_stack_reflectance(stack, harmonics);
+        const vec3 rgb = openpbr_thin_film_stack_reflectance(stack, harmonics, channel);
         if (stack_index == 0)
         {
             pair.dielectric = rgb;
