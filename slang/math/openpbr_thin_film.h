@@ -552,16 +552,34 @@ OPENPBR_FUNC OpenPBR_ThinFilmHarmonics openpbr_thin_film_harmonics(float optical
     return harmonics;
 }
 
+// rho^m for m = 1 .. 4 in x .. w, real and imaginary parts: what both harmonic sums weight the
+// film's harmonics by.
+struct OpenPBR_ThinFilmRhoPowers
+{
+    vec4 real;
+    vec4 imaginary;
+};
+
+OPENPBR_FUNC OpenPBR_ThinFilmRhoPowers openpbr_thin_film_rho_powers(vec2 rho)
+{
+    const vec2 rho_2 = openpbr_complex_multiply(rho, rho);
+    const vec2 rho_3 = openpbr_complex_multiply(rho_2, rho);
+    const vec2 rho_4 = openpbr_complex_multiply(rho_2, rho_2);
+    OpenPBR_ThinFilmRhoPowers powers;
+    powers.real = vec4(rho.x, rho_2.x, rho_3.x, rho_4.x);
+    powers.imaginary = vec4(rho.y, rho_2.y, rho_3.y, rho_4.y);
+    return powers;
+}
+
 // mean + 2 A sum_{m=1..4} Re(rho^m H_c(m)) for the three channels.
 OPENPBR_FUNC vec3 openpbr_thin_film_harmonic_sum(OPENPBR_IN(OpenPBR_ThinFilmPolarization) polarization,
                                                  OPENPBR_IN(OpenPBR_ThinFilmHarmonics) harmonics)
 {
-    const vec2 rho_2 = openpbr_complex_multiply(polarization.rho, polarization.rho);
-    const vec2 rho_3 = openpbr_complex_multiply(rho_2, polarization.rho);
-    const vec2 rho_4 = openpbr_complex_multiply(rho_2, rho_2);
-    const vec3 sum = polarization.rho.x * harmonics.real_1 - polarization.rho.y * harmonics.imaginary_1 +
-                     rho_2.x * harmonics.real_2 - rho_2.y * harmonics.imaginary_2 + rho_3.x * harmonics.real_3 -
-                     rho_3.y * harmonics.imaginary_3 + rho_4.x * harmonics.real_4 - rho_4.y * harmonics.imaginary_4;
+    const OpenPBR_ThinFilmRhoPowers rho = openpbr_thin_film_rho_powers(polarization.rho);
+    const vec3 sum = rho.real.x * harmonics.real_1 - rho.imaginary.x * harmonics.imaginary_1 +
+                     rho.real.y * harmonics.real_2 - rho.imaginary.y * harmonics.imaginary_2 +
+                     rho.real.z * harmonics.real_3 - rho.imaginary.z * harmonics.imaginary_3 +
+                     rho.real.w * harmonics.real_4 - rho.imaginary.w * harmonics.imaginary_4;
     return vec3(polarization.mean) + (2.0f * polarization.amplitude) * sum;
 }
 
@@ -593,11 +611,8 @@ OPENPBR_FUNC OpenPBR_ThinFilmChannelHarmonics openpbr_thin_film_channel_harmonic
 OPENPBR_FUNC float openpbr_thin_film_channel_harmonic_sum(OPENPBR_IN(OpenPBR_ThinFilmPolarization) polarization,
                                                           OPENPBR_IN(OpenPBR_ThinFilmChannelHarmonics) harmonics)
 {
-    const vec2 rho_2 = openpbr_complex_multiply(polarization.rho, polarization.rho);
-    const vec2 rho_3 = openpbr_complex_multiply(rho_2, polarization.rho);
-    const vec2 rho_4 = openpbr_complex_multiply(rho_2, rho_2);
-    const float sum = dot(vec4(polarization.rho.x, rho_2.x, rho_3.x, rho_4.x), harmonics.real) -
-                      dot(vec4(polarization.rho.y, rho_2.y, rho_3.y, rho_4.y), harmonics.imaginary);
+    const OpenPBR_ThinFilmRhoPowers rho = openpbr_thin_film_rho_powers(polarization.rho);
+    const float sum = dot(rho.real, harmonics.real) - dot(rho.imaginary, harmonics.imaginary);
     return polarization.mean + 2.0f * polarization.amplitude * sum;
 }
 
