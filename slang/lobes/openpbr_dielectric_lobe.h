@@ -169,29 +169,39 @@ OPENPBR_FUNC vec2 openpbr_dielectric_lobe_channel(OPENPBR_IN(OpenPBR_DielectricL
     return vec2(value, pdf);
 }
 
+// A dispersive lobe is evaluated once per channel IOR, the others once (at eta.x = eta.y =
+// eta.z). One loop whose trip count (1 or 3) is known only at run time, so the channel code is
+// compiled once per call site: Mesa's NIR inlines every call and unrolls loops of known trip
+// count, and the four copies written out (one plain, three dispersive) in each of eval and pdf
+// made up a tenth of the full module (docs/performance.md, "llvmpipe build time").
+OPENPBR_FUNC int openpbr_dielectric_lobe_channel_count(OPENPBR_IN(OpenPBR_DielectricLobe) lobe)
+{
+    return lobe.dispersive ? 3 : 1;
+}
+
 OPENPBR_FUNC vec3 openpbr_dielectric_lobe_eval(OPENPBR_IN(OpenPBR_DielectricLobe) lobe, vec3 view, vec3 light)
 {
     const vec3 weight = light.z > 0.0f ? lobe.reflection_weight : lobe.transmission_weight;
-    if (!lobe.dispersive)
+    vec3 value = vec3(0.0f);
+    const int channel_count = openpbr_dielectric_lobe_channel_count(lobe);
+    for (int channel = 0; channel < channel_count; ++channel)
     {
-        return weight * openpbr_dielectric_lobe_channel(lobe, view, light, lobe.eta.x).x;
+        value = openpbr_with_channel(
+            value, channel, openpbr_dielectric_lobe_channel(lobe, view, light, openpbr_channel_of(lobe.eta, channel)).x);
     }
-    return weight * vec3(openpbr_dielectric_lobe_channel(lobe, view, light, lobe.eta.x).x,
-                         openpbr_dielectric_lobe_channel(lobe, view, light, lobe.eta.y).x,
-                         openpbr_dielectric_lobe_channel(lobe, view, light, lobe.eta.z).x);
+    return weight * (lobe.dispersive ? value : vec3(value.x));
 }
 
 OPENPBR_FUNC float openpbr_dielectric_lobe_pdf(OPENPBR_IN(OpenPBR_DielectricLobe) lobe, vec3 view, vec3 light)
 {
-    if (!lobe.dispersive)
+    // Dispersive: one-sample MIS over the channel IORs, each chosen with probability 1/3.
+    float pdf_sum = 0.0f;
+    const int channel_count = openpbr_dielectric_lobe_channel_count(lobe);
+    for (int channel = 0; channel < channel_count; ++channel)
     {
-        return openpbr_dielectric_lobe_channel(lobe, view, light, lobe.eta.x).y;
+        pdf_sum += openpbr_dielectric_lobe_channel(lobe, view, light, openpbr_channel_of(lobe.eta, channel)).y;
     }
-    // One-sample MIS over the channel IORs, each chosen with probability 1/3.
-    return (openpbr_dielectric_lobe_channel(lobe, view, light, lobe.eta.x).y +
-            openpbr_dielectric_lobe_channel(lobe, view, light, lobe.eta.y).y +
-            openpbr_dielectric_lobe_channel(lobe, view, light, lobe.eta.z).y) *
-           (1.0f / 3.0f);
+    return lobe.dispersive ? pdf_sum * (1.0f / 3.0f) : pdf_sum;
 }
 
 // u.x, u.y: the microfacet; selector in [0, 1): channel (when dispersive) and then R or T.
@@ -272,24 +282,6 @@ OPENPBR_FUNC float openpbr_dielectric_compensation_albedo(float mu, float table_
                        : max(openpbr_dielectric_transmission_albedo(mu, table_alpha, eta), OPENPBR_MIN_TRANSMISSION_ALBEDO);
 }
 
-// The compensation albedo per channel: a dispersive lobe refracts each channel with its own IOR,
-// so each channel is compensated by its own albedo (two more look-ups, only when dispersive).
-// One channel's albedo for all three let a channel that transmits much more than the green one
-// gain energy: relative IOR 1/3 (green, mostly total internal reflection, E_T0 at the floor)
-// against 0.996 (a 1000 nm channel at Abbe number 1) carried the red channel's 1 - E_R / 1e-3
-// instead of 1 - E_R, a sample weight of 1.4e4 (fuzz/corpus/finding_dispersive_channel_compensation.bin).
-OPENPBR_FUNC vec3 openpbr_dielectric_compensation_albedos(float mu, float table_alpha, vec3 eta, float lambda_view,
-                                                          bool from_inside)
-{
-    const float green = openpbr_dielectric_compensation_albedo(mu, table_alpha, eta.y, lambda_view, from_inside);
-    if (!openpbr_channels_differ(eta))
-    {
-        return vec3(green);
-    }
-    return vec3(openpbr_dielectric_compensation_albedo(mu, table_alpha, eta.x, lambda_view, from_inside), green,
-                openpbr_dielectric_compensation_albedo(mu, table_alpha, eta.z, lambda_view, from_inside));
-}
-
 // The share of the refraction that the compensation's floor keeps from one channel (see
 // openpbr_transmission_lobe_prepare): 0 unless the floor holds, a second look-up only then.
 OPENPBR_FUNC float openpbr_transmission_floor_share(float mu, float table_alpha, float eta, float compensation_albedo)
@@ -299,16 +291,50 @@ OPENPBR_FUNC float openpbr_transmission_floor_share(float mu, float table_alpha,
                             OPENPBR_MIN_TRANSMISSION_ALBEDO
                : 0.0f;
 }
-// The same per channel, like openpbr_dielectric_compensation_albedos.
-OPENPBR_FUNC vec3 openpbr_transmission_floor_shares(float mu, float table_alpha, vec3 eta, vec3 compensation_albedo)
+
+// A rough dielectric's compensation per channel: the albedo (openpbr_dielectric_compensation_albedo)
+// and, entering from outside, the floor's share (openpbr_transmission_floor_share; 0 from inside).
+struct OpenPBR_DielectricCompensation
 {
-    const float green = openpbr_transmission_floor_share(mu, table_alpha, eta.y, compensation_albedo.y);
-    if (!openpbr_channels_differ(eta))
+    vec3 albedo;
+    vec3 floor_share;
+};
+
+// A dispersive lobe refracts each channel with its own IOR, so each channel is compensated by
+// its own albedo. One channel's albedo for all three let a channel that transmits much more than
+// the green one gain energy: relative IOR 1/3 (green, mostly total internal reflection, E_T0 at
+// the floor) against 0.996 (a 1000 nm channel at Abbe number 1) carried the red channel's
+// 1 - E_R / 1e-3 instead of 1 - E_R, a sample weight of 1.4e4
+// (fuzz/corpus/finding_dispersive_channel_compensation.bin). Without dispersion the green
+// channel's values serve all three.
+// One loop over the channels, whose trip count (1 or 3) is known only at run time: Mesa's NIR
+// inlines every call and unrolls loops of known trip count, and the three channels written out
+// (six table look-ups at each of the two call sites, three floor shares) made the full module's
+// llvmpipe pipeline 1.3 s slower to build (docs/performance.md, "llvmpipe build time").
+OPENPBR_FUNC OpenPBR_DielectricCompensation openpbr_dielectric_compensation(float mu, float table_alpha, vec3 eta,
+                                                                            float lambda_view, bool from_inside)
+{
+    const bool dispersive = openpbr_channels_differ(eta);
+    const int first_channel = dispersive ? 0 : 1;
+    const int end_channel = dispersive ? 3 : 2;
+    OpenPBR_DielectricCompensation compensation;
+    compensation.albedo = vec3(0.0f);
+    compensation.floor_share = vec3(0.0f);
+    for (int channel = first_channel; channel < end_channel; ++channel)
     {
-        return vec3(green);
+        const float channel_eta = openpbr_channel_of(eta, channel);
+        const float albedo = openpbr_dielectric_compensation_albedo(mu, table_alpha, channel_eta, lambda_view, from_inside);
+        const float floor_share =
+            from_inside ? 0.0f : openpbr_transmission_floor_share(mu, table_alpha, channel_eta, albedo);
+        compensation.albedo = openpbr_with_channel(compensation.albedo, channel, albedo);
+        compensation.floor_share = openpbr_with_channel(compensation.floor_share, channel, floor_share);
     }
-    return vec3(openpbr_transmission_floor_share(mu, table_alpha, eta.x, compensation_albedo.x), green,
-                openpbr_transmission_floor_share(mu, table_alpha, eta.z, compensation_albedo.z));
+    if (!dispersive)
+    {
+        compensation.albedo = vec3(compensation.albedo.y);
+        compensation.floor_share = vec3(compensation.floor_share.y);
+    }
+    return compensation;
 }
 
 // OpenPBR 1.1 "Translucent base" and "Subsurface": refraction into the interior, the
@@ -345,9 +371,10 @@ OPENPBR_FUNC OpenPBR_DielectricLobe openpbr_transmission_lobe_prepare(OPENPBR_IN
     vec3 kept = vec3(0.0f);
     if (!is_delta)
     {
-        compensation_albedo =
-            openpbr_dielectric_compensation_albedos(mu, table_alpha, eta_channels, openpbr_ggx_lambda(view, alpha), false);
-        kept = openpbr_transmission_floor_shares(mu, table_alpha, eta_channels, compensation_albedo);
+        const OpenPBR_DielectricCompensation compensation =
+            openpbr_dielectric_compensation(mu, table_alpha, eta_channels, openpbr_ggx_lambda(view, alpha), false);
+        compensation_albedo = compensation.albedo;
+        kept = compensation.floor_share;
     }
     albedo = transmission_weight;
     slab_albedo =
@@ -369,7 +396,7 @@ OPENPBR_FUNC OpenPBR_DielectricLobe openpbr_interface_lobe_prepare(float layer_w
     const vec3 compensation_albedo =
         openpbr_ggx_is_delta(alpha)
             ? vec3(1.0f)
-            : openpbr_dielectric_compensation_albedos(mu, table_alpha, eta_inside, openpbr_ggx_lambda(view, alpha), true);
+            : openpbr_dielectric_compensation(mu, table_alpha, eta_inside, openpbr_ggx_lambda(view, alpha), true).albedo;
     const vec3 weight = layer_weight / compensation_albedo;
     return openpbr_dielectric_lobe_init(weight, exit_factor * weight, alpha, eta_inside, true,
                                         OPENPBR_LOBE_ID_INTERFACE_FROM_INSIDE, view);

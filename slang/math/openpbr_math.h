@@ -130,6 +130,23 @@ OPENPBR_FUNC vec2 openpbr_sin_cos_pi(float t)
     return vec2(cos_pi_u, -sin_pi_u);
 }
 
+// Component `channel` (0, 1, 2) of v, for loops over the RGB channels (a select chain, which
+// every target language compiles alike).
+OPENPBR_FUNC float openpbr_channel_of(vec3 v, int channel) { return channel == 0 ? v.x : (channel == 1 ? v.y : v.z); }
+
+// The unit vector along channel `channel` (0, 1, 2), to put one channel's value into a vec3.
+OPENPBR_FUNC vec3 openpbr_channel_mask(int channel)
+{
+    return vec3(channel == 0 ? 1.0f : 0.0f, channel == 1 ? 1.0f : 0.0f, channel == 2 ? 1.0f : 0.0f);
+}
+
+// v with component `channel` (0, 1, 2) replaced by value (a select, so an infinite value does not
+// turn the other components into NaN as a mask product would).
+OPENPBR_FUNC vec3 openpbr_with_channel(vec3 v, int channel, float value)
+{
+    return vec3(channel == 0 ? value : v.x, channel == 1 ? value : v.y, channel == 2 ? value : v.z);
+}
+
 // Luminance with Rec.709 / linear sRGB primaries; used only for sampling decisions, never
 // for values, so the exact primaries do not affect the result's expectation.
 OPENPBR_FUNC float openpbr_luminance(vec3 c) { return dot(c, vec3(0.2126f, 0.7152f, 0.0722f)); }

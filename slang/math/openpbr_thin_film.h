@@ -487,12 +487,6 @@ OPENPBR_FUNC OpenPBR_ThinFilmSpectralLobe openpbr_thin_film_spectral_lobe(int in
     return lobe;
 }
 
-// Component `channel` (0, 1, 2) of v.
-OPENPBR_FUNC float openpbr_thin_film_channel_of(vec3 v, int channel)
-{
-    return channel == 0 ? v.x : (channel == 1 ? v.y : v.z);
-}
-
 // The film's spectral harmonics at one angle (see the top): H_c(m) for m = 1 .. 4 per RGB
 // channel, real and imaginary parts. They depend on the film and the angle only.
 struct OpenPBR_ThinFilmHarmonics
@@ -597,13 +591,11 @@ OPENPBR_FUNC OpenPBR_ThinFilmChannelHarmonics openpbr_thin_film_channel_harmonic
                                                                                   int channel)
 {
     OpenPBR_ThinFilmChannelHarmonics result;
-    result.real = vec4(
-        openpbr_thin_film_channel_of(harmonics.real_1, channel), openpbr_thin_film_channel_of(harmonics.real_2, channel),
-        openpbr_thin_film_channel_of(harmonics.real_3, channel), openpbr_thin_film_channel_of(harmonics.real_4, channel));
-    result.imaginary = vec4(openpbr_thin_film_channel_of(harmonics.imaginary_1, channel),
-                            openpbr_thin_film_channel_of(harmonics.imaginary_2, channel),
-                            openpbr_thin_film_channel_of(harmonics.imaginary_3, channel),
-                            openpbr_thin_film_channel_of(harmonics.imaginary_4, channel));
+    result.real = vec4(openpbr_channel_of(harmonics.real_1, channel), openpbr_channel_of(harmonics.real_2, channel),
+                       openpbr_channel_of(harmonics.real_3, channel), openpbr_channel_of(harmonics.real_4, channel));
+    result.imaginary =
+        vec4(openpbr_channel_of(harmonics.imaginary_1, channel), openpbr_channel_of(harmonics.imaginary_2, channel),
+             openpbr_channel_of(harmonics.imaginary_3, channel), openpbr_channel_of(harmonics.imaginary_4, channel));
     return result;
 }
 
@@ -721,8 +713,8 @@ OPENPBR_FUNC OpenPBR_ThinFilmBasePair openpbr_thin_film_fresnel_bases(OPENPBR_IN
         const int channel = stack_index - 1;
         if (stack_index > 0)
         {
-            base = openpbr_thin_film_conductor_base(inputs, openpbr_thin_film_channel_of(base_n, channel),
-                                                    openpbr_thin_film_channel_of(base_k, channel));
+            base = openpbr_thin_film_conductor_base(inputs, openpbr_channel_of(base_n, channel),
+                                                    openpbr_channel_of(base_k, channel));
         }
         const OpenPBR_ThinFilmStack stack = openpbr_thin_film_stack(inputs, base.ior_squared, base.normal_term);
         const vec3 rgb = openpbr_thin_film_stack_reflectance(stack, harmonics, channel);
@@ -732,7 +724,7 @@ OPENPBR_FUNC OpenPBR_ThinFilmBasePair openpbr_thin_film_fresnel_bases(OPENPBR_IN
         }
         else
         {
-            pair.conductor += vec3(channel == 0 ? 1.0f : 0.0f, channel == 1 ? 1.0f : 0.0f, channel == 2 ? 1.0f : 0.0f) * rgb;
+            pair.conductor += openpbr_channel_mask(channel) * rgb;
         }
     }
     // The sensitivities have negative lobes, so a strongly coloured spectrum can land slightly
