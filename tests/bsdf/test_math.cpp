@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 
 #include <glm/glm.hpp>  // first: the OpenPBR headers require it (interop/openpbr_interop_cpp.h)
 #include "slang/math/openpbr_math.h"
@@ -52,6 +53,26 @@ TEST(SinCosPi, EndsAndMiddle)
     const glm::vec2 at_one = openpbr::openpbr_sin_cos_pi(1.0f);
     EXPECT_NEAR(at_one.x, 0.0f, 3e-7f);
     EXPECT_NEAR(at_one.y, -1.0f, 3e-7f);
+}
+
+// The channel helpers the per-channel loops use (openpbr_dielectric_compensation, the dielectric
+// lobe's eval and pdf): every channel read and written, the others untouched, and an infinite
+// value kept in its own channel (a mask product would turn the others into NaN).
+TEST(ChannelHelpers, ReadAndReplaceOneChannel)
+{
+    const glm::vec3 v(1.0f, 2.0f, 3.0f);
+    const float infinity = std::numeric_limits<float>::infinity();
+    for (int channel = 0; channel < 3; ++channel)
+    {
+        EXPECT_EQ(openpbr::openpbr_channel_of(v, channel), v[channel]);
+        const glm::vec3 replaced = openpbr::openpbr_with_channel(v, channel, infinity);
+        for (int other = 0; other < 3; ++other)
+        {
+            EXPECT_EQ(replaced[other], other == channel ? infinity : v[other]) << channel << " " << other;
+        }
+        EXPECT_EQ(openpbr::openpbr_channel_mask(channel)[channel], 1.0f);
+        EXPECT_EQ(glm::dot(openpbr::openpbr_channel_mask(channel), glm::vec3(1.0f)), 1.0f);
+    }
 }
 
 }  // namespace
