@@ -33,33 +33,8 @@ cmake -S "$repo_root" -B "$build_dir" "${generator[@]}" -DCMAKE_BUILD_TYPE=RelWi
   -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ \
   -DCMAKE_CXX_FLAGS="$sanitizers" -DCMAKE_EXE_LINKER_FLAGS="$sanitizers" \
   -DOPENPBR_WARNINGS_AS_ERRORS="${OPENPBR_WARNINGS_AS_ERRORS:-OFF}" >/dev/null
-targets=()
-for entry in "${tests[@]}"; do
-  targets+=("${entry%%:*}")
-done
-cmake --build "$build_dir" --parallel "$jobs" --target "${targets[@]}"
-
 export ASAN_OPTIONS=${ASAN_OPTIONS:-abort_on_error=1:detect_leaks=1:strict_string_checks=1}
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-halt_on_error=1:print_stacktrace=1}
-failed=()
-for entry in "${tests[@]}"; do
-  name=${entry%%:*}
-  filter=${entry#*:}
-  executable=$(find "$build_dir/tests" -type f -name "$name" -perm -u+x | head -n 1)
-  if [[ -z "$executable" ]]; then
-    echo "ci_sanitizers: $name was not built" >&2
-    failed+=("$name")
-    continue
-  fi
-  echo "ci_sanitizers: $name --gtest_filter=$filter"
-  start=$(date +%s)
-  if ! "$executable" --gtest_filter="$filter" --gtest_brief=1; then
-    failed+=("$name")
-  fi
-  echo "ci_sanitizers: $name took $(($(date +%s) - start)) s"
-done
-if ((${#failed[@]})); then
-  echo "ci_sanitizers: failed: ${failed[*]}" >&2
-  exit 1
-fi
-echo "ci_sanitizers: all passed"
+# shellcheck source=scripts/ci_test_subset.sh
+source "$repo_root/scripts/ci_test_subset.sh"
+ci_build_and_run_tests ci_sanitizers "$build_dir" "$jobs" "${tests[@]}"

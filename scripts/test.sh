@@ -3,11 +3,12 @@
 # installed package as outside projects use it (scripts/ci_consumers.sh: install to a temporary
 # prefix, build and run the three consumers of examples/), then the stability checks of
 # docs/stability.md: the BSDF fuzzer for a bounded time (scripts/ci_fuzz.sh, 60 s) and the CPU
-# unit tests under ASan + UBSan (scripts/ci_sanitizers.sh), and the format check of the C, C++ and
-# CUDA sources against .clang-format (scripts/format-check.sh). Every step runs even when an
-# earlier one fails; the script fails if any did. OPENPBR_SKIP_CONSUMERS=1,
-# OPENPBR_SKIP_SANITIZERS=1, OPENPBR_SKIP_FUZZ=1 and OPENPBR_SKIP_FORMAT=1 leave those steps out,
-# e.g. for a quick local run.
+# unit tests under ASan + UBSan (scripts/ci_sanitizers.sh) and in Clang's Release build
+# (scripts/ci_clang_release.sh), and the format check of the C, C++ and CUDA sources against
+# .clang-format (scripts/format-check.sh). Every step runs even when an earlier one fails; the
+# script fails if any did. OPENPBR_SKIP_CONSUMERS=1, OPENPBR_SKIP_SANITIZERS=1,
+# OPENPBR_SKIP_CLANG_RELEASE=1, OPENPBR_SKIP_FUZZ=1 and OPENPBR_SKIP_FORMAT=1 leave those steps
+# out, e.g. for a quick local run.
 set -euo pipefail
 repo_root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 "$repo_root/scripts/setup.sh"
@@ -24,6 +25,9 @@ if [[ "${OPENPBR_SKIP_FUZZ:-0}" != 1 ]]; then
 fi
 if [[ "${OPENPBR_SKIP_SANITIZERS:-0}" != 1 ]]; then
   "$repo_root/scripts/ci_sanitizers.sh" || failed+=(ci_sanitizers)
+fi
+if [[ "${OPENPBR_SKIP_CLANG_RELEASE:-0}" != 1 ]]; then
+  "$repo_root/scripts/ci_clang_release.sh" || failed+=(ci_clang_release)
 fi
 if [[ "${OPENPBR_SKIP_FORMAT:-0}" != 1 ]]; then
   "$repo_root/scripts/format-check.sh" || failed+=(format-check)
