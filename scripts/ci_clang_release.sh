@@ -35,11 +35,7 @@ tests=(
   "test_stability:StabilityCorpus.*:*cpu*"
 )
 
-generator=()
-command -v ninja >/dev/null && generator=(-G Ninja)
-cmake -S "$repo_root" -B "$build_dir" "${generator[@]}" -DCMAKE_BUILD_TYPE=Release \
-  -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ -DOPENPBR_BUILD_FUZZ=OFF \
-  -DOPENPBR_WARNINGS_AS_ERRORS="${OPENPBR_WARNINGS_AS_ERRORS:-OFF}" >/dev/null
 # shellcheck source=scripts/ci_test_subset.sh
 source "$repo_root/scripts/ci_test_subset.sh"
+ci_configure_clang "$build_dir" Release -DOPENPBR_BUILD_FUZZ=OFF
 ci_build_and_run_tests ci_clang_release "$build_dir" "$jobs" "${tests[@]}"

@@ -27,14 +27,9 @@ tests=(
 )
 
 sanitizers="-fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer"
-generator=()
-command -v ninja >/dev/null && generator=(-G Ninja)
-cmake -S "$repo_root" -B "$build_dir" "${generator[@]}" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-  -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ \
-  -DCMAKE_CXX_FLAGS="$sanitizers" -DCMAKE_EXE_LINKER_FLAGS="$sanitizers" \
-  -DOPENPBR_WARNINGS_AS_ERRORS="${OPENPBR_WARNINGS_AS_ERRORS:-OFF}" >/dev/null
-export ASAN_OPTIONS=${ASAN_OPTIONS:-abort_on_error=1:detect_leaks=1:strict_string_checks=1}
-export UBSAN_OPTIONS=${UBSAN_OPTIONS:-halt_on_error=1:print_stacktrace=1}
 # shellcheck source=scripts/ci_test_subset.sh
 source "$repo_root/scripts/ci_test_subset.sh"
+ci_configure_clang "$build_dir" RelWithDebInfo -DCMAKE_CXX_FLAGS="$sanitizers" -DCMAKE_EXE_LINKER_FLAGS="$sanitizers"
+export ASAN_OPTIONS=${ASAN_OPTIONS:-abort_on_error=1:detect_leaks=1:strict_string_checks=1}
+export UBSAN_OPTIONS=${UBSAN_OPTIONS:-halt_on_error=1:print_stacktrace=1}
 ci_build_and_run_tests ci_sanitizers "$build_dir" "$jobs" "${tests[@]}"
