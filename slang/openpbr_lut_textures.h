@@ -39,6 +39,10 @@
 //   2D  32 x 32           mu, fuzz roughness        OPENPBR_FUZZ_LTC_A_OFFSET (fuzz table) OPENPBR_LUT_TEXTURE_FUZZ_LTC_B 6
 //   2D  32 x 32           mu, fuzz roughness        OPENPBR_FUZZ_LTC_B_OFFSET (fuzz table) OPENPBR_LUT_TEXTURE_FUZZ_LTC_R 7
 //   2D  32 x 32           mu, fuzz roughness        OPENPBR_FUZZ_LTC_R_OFFSET (fuzz table)
+//   OPENPBR_LUT_TEXTURE_FILM_LOBE 8  3D  33 x 32 x 64  p, c_mu, channel x 32 + c_r  OPENPBR_LUT_FILM_OFFSET
+// The film table's two channels (the quantile and the first partial moment) are stacked along
+// z; it is read at texel centres only (the library interpolates its nodes itself), so its
+// filtering mode does not matter.
 // The anisotropy table is 4D (mu, r, a, phi): its 10 azimuth slabs of 16 x 16 x 10 are stacked
 // along z (z = phi node x 10 + anisotropy node); the library filters within a slab (trilinear
 // over mu, r, a) and blends the two azimuth slabs itself, so filtering never mixes slabs.
@@ -71,10 +75,12 @@
 #define OPENPBR_LUT_TEXTURE_FUZZ_LTC_A 5
 #define OPENPBR_LUT_TEXTURE_FUZZ_LTC_B 6
 #define OPENPBR_LUT_TEXTURE_FUZZ_LTC_R 7
-#define OPENPBR_LUT_TEXTURE_COUNT 8
+#define OPENPBR_LUT_TEXTURE_FILM_LOBE 8
+#define OPENPBR_LUT_TEXTURE_COUNT 9
 // Index of a table among the host's textures of its dimension, e.g. for two arrays
-// sampler2D[4] (ids 0, 5, 6, 7) and sampler3D[4] (ids 1-4): 0, 0, 1, 2, 3, 1, 2, 3.
-#define OPENPBR_LUT_TEXTURE_SLOT(lut_id) ((lut_id) == 0 ? 0 : ((lut_id) <= 4 ? (lut_id)-1 : (lut_id)-4))
+// sampler2D[4] (ids 0, 5, 6, 7) and sampler3D[5] (ids 1-4, 8): 0, 0, 1, 2, 3, 1, 2, 3, 4.
+#define OPENPBR_LUT_TEXTURE_SLOT(lut_id) \
+    ((lut_id) == 0 ? 0 : ((lut_id) <= 4 ? (lut_id)-1 : ((lut_id) == 8 ? 4 : (lut_id)-4)))
 
 // Declarations the library can make itself (OPENPBR_LUT_TEXTURES_DECLARE=1, Slang, GLSL and
 // HLSL; default 0: the host declares its textures and defines the two macros): table id k at
@@ -106,6 +112,7 @@ OPENPBR_LUT_TEXTURE_DECLARE(4, sampler3D)
 OPENPBR_LUT_TEXTURE_DECLARE(5, sampler2D)
 OPENPBR_LUT_TEXTURE_DECLARE(6, sampler2D)
 OPENPBR_LUT_TEXTURE_DECLARE(7, sampler2D)
+OPENPBR_LUT_TEXTURE_DECLARE(8, sampler3D)
 #define OPENPBR_SAMPLE_2D_TEXTURE(lut_id, uv) textureLod(OPENPBR_LUT_TEXTURE_NAME(lut_id), uv, 0.0f).x
 #define OPENPBR_SAMPLE_3D_TEXTURE(lut_id, uvw) textureLod(OPENPBR_LUT_TEXTURE_NAME(lut_id), uvw, 0.0f).x
 #elif defined(OPENPBR_LANGUAGE_TARGET_SLANG)
@@ -119,13 +126,14 @@ OPENPBR_LUT_TEXTURE_DECLARE(4, Sampler3D)
 OPENPBR_LUT_TEXTURE_DECLARE(5, Sampler2D)
 OPENPBR_LUT_TEXTURE_DECLARE(6, Sampler2D)
 OPENPBR_LUT_TEXTURE_DECLARE(7, Sampler2D)
+OPENPBR_LUT_TEXTURE_DECLARE(8, Sampler3D)
 #define OPENPBR_SAMPLE_2D_TEXTURE(lut_id, uv) OPENPBR_LUT_TEXTURE_NAME(lut_id).SampleLevel(uv, 0.0f)
 #define OPENPBR_SAMPLE_3D_TEXTURE(lut_id, uvw) OPENPBR_LUT_TEXTURE_NAME(lut_id).SampleLevel(uvw, 0.0f)
 #elif defined(OPENPBR_LANGUAGE_TARGET_HLSL)
 #define OPENPBR_LUT_TEXTURE_DECLARE(number, kind)                                                                       \
     kind<float> openpbr_lut_texture_##number : register(OPENPBR_CONCATENATE(t, OPENPBR_LUT_TEXTURES_REGISTER_##number), \
                                                         OPENPBR_CONCATENATE(space, OPENPBR_HLSL_REGISTER_SPACE));
-// Registers t6 ... t13 for the default first binding 6 (HLSL registers are literal tokens).
+// Registers t6 ... t14 for the default first binding 6 (HLSL registers are literal tokens).
 #define OPENPBR_LUT_TEXTURES_REGISTER_0 6
 #define OPENPBR_LUT_TEXTURES_REGISTER_1 7
 #define OPENPBR_LUT_TEXTURES_REGISTER_2 8
@@ -134,6 +142,7 @@ OPENPBR_LUT_TEXTURE_DECLARE(7, Sampler2D)
 #define OPENPBR_LUT_TEXTURES_REGISTER_5 11
 #define OPENPBR_LUT_TEXTURES_REGISTER_6 12
 #define OPENPBR_LUT_TEXTURES_REGISTER_7 13
+#define OPENPBR_LUT_TEXTURES_REGISTER_8 14
 OPENPBR_LUT_TEXTURE_DECLARE(0, Texture2D)
 OPENPBR_LUT_TEXTURE_DECLARE(1, Texture3D)
 OPENPBR_LUT_TEXTURE_DECLARE(2, Texture3D)
@@ -142,6 +151,7 @@ OPENPBR_LUT_TEXTURE_DECLARE(4, Texture3D)
 OPENPBR_LUT_TEXTURE_DECLARE(5, Texture2D)
 OPENPBR_LUT_TEXTURE_DECLARE(6, Texture2D)
 OPENPBR_LUT_TEXTURE_DECLARE(7, Texture2D)
+OPENPBR_LUT_TEXTURE_DECLARE(8, Texture3D)
 SamplerState openpbr_lut_sampler : register(s0, OPENPBR_CONCATENATE(space, OPENPBR_HLSL_REGISTER_SPACE));
 #define OPENPBR_SAMPLE_2D_TEXTURE(lut_id, uv) OPENPBR_LUT_TEXTURE_NAME(lut_id).SampleLevel(openpbr_lut_sampler, uv, 0.0f)
 #define OPENPBR_SAMPLE_3D_TEXTURE(lut_id, uvw) OPENPBR_LUT_TEXTURE_NAME(lut_id).SampleLevel(openpbr_lut_sampler, uvw, 0.0f)

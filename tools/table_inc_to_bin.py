@@ -10,8 +10,10 @@ this script to write them into the build directory. Any table size: the count is
 identify a float32 exactly, so the .bin holds the generator's floats bit for bit
 (tests/tables/test_lut_generator.cpp and tests/bsdf/test_fuzz_lobe.cpp compare the two forms).
 
-Usage: table_inc_to_bin.py INPUT.inc OUTPUT.bin, e.g.
-    tools/table_inc_to_bin.py slang/generated/openpbr_lut_values.inc build/generated/openpbr_lut.bin
+Usage: table_inc_to_bin.py INPUT.inc [INPUT.inc ...] OUTPUT.bin, e.g.
+    tools/table_inc_to_bin.py slang/generated/openpbr_lut_values.inc slang/generated/openpbr_film_lut_values.inc build/generated/openpbr_lut.bin
+Several inputs are concatenated in order, as the headers' array mode #includes them one after
+the other into one array (openpbr_lut.bin: the compensation tables 0-4, then the film table 5).
 `//` comments are skipped. Exit status 1 with a message (file and line) for a token that is not a
 finite float literal, an empty value between commas or an empty table; the output is written to
 OUTPUT.bin.tmp and renamed, so a failed run leaves no partial table.
@@ -50,14 +52,14 @@ def read_values(path):
 
 
 def main(arguments):
-    if len(arguments) != 3:
+    if len(arguments) < 3:
         usage = next(part for part in __doc__.split("\n\n") if part.startswith("Usage"))
         print(usage, file=sys.stderr)
         return 1
-    source = pathlib.Path(arguments[1])
-    target = pathlib.Path(arguments[2])
+    sources = [pathlib.Path(argument) for argument in arguments[1:-1]]
+    target = pathlib.Path(arguments[-1])
     try:
-        values = read_values(source)
+        values = [value for source in sources for value in read_values(source)]
     except (OSError, ValueError) as error:
         print(f"table_inc_to_bin.py: {error}", file=sys.stderr)
         return 1

@@ -88,7 +88,7 @@ struct GpuPath
     std::string kernel_file;  // under the kernel directory
     std::string entry_point;
     // Texture tables (OPENPBR_USE_TEXTURE_LUTS): the tables are sampled images at bindings
-    // 6-13 (slang/openpbr_lut_textures.h), not the buffers at 0 and 1.
+    // 6-14 (slang/openpbr_lut_textures.h), not the buffers at 0 and 1.
     bool texture_tables = false;
 };
 
@@ -141,7 +141,7 @@ ComputePipelineDescription conformance_pipeline_description(const GpuPath& path,
     return description;
 }
 
-// The eight table textures, filled as slang/openpbr_lut_textures.h says (contiguous ranges of
+// The nine table textures, filled as slang/openpbr_lut_textures.h says (contiguous ranges of
 // the shipped flat tables, x fastest).
 struct TableTexture
 {
@@ -167,7 +167,9 @@ std::vector<TableTexture> table_textures()
             {n4, n4, m4 * m4, false, OPENPBR_LUT_GGX_ANISOTROPY_RATIO_OFFSET},
             {nf, nf, 1, true, OPENPBR_FUZZ_LTC_A_OFFSET},
             {nf, nf, 1, true, OPENPBR_FUZZ_LTC_B_OFFSET},
-            {nf, nf, 1, true, OPENPBR_FUZZ_LTC_R_OFFSET}};
+            {nf, nf, 1, true, OPENPBR_FUZZ_LTC_R_OFFSET},
+            {OPENPBR_LUT_FILM_QUANTILE_SIZE, OPENPBR_LUT_FILM_SIZE, OPENPBR_LUT_FILM_CHANNEL_COUNT * OPENPBR_LUT_FILM_SIZE,
+             false, OPENPBR_LUT_FILM_OFFSET}};
 }
 
 GpuBatchResult dispatch_conformance(ComputePipeline& pipeline, const std::vector<float>& queries,

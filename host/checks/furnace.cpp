@@ -320,6 +320,62 @@ const std::vector<FurnaceConfig>& white_furnace_configs()
     return configs;
 }
 
+const std::vector<FurnaceConfig>& film_furnace_configs()
+{
+    static const std::vector<FurnaceConfig> configs = []() {
+        struct Coat
+        {
+            const char* name;
+            float weight;
+            float ior;
+        };
+        const std::vector<Coat> coats = {{"nocoat", 0.0f, 1.5f},       {"coat0p5_ior1p3", 0.5f, 1.3f},
+                                         {"coat0p5_ior1p6", 0.5f, 1.6f}, {"coat0p5_ior1p8", 0.5f, 1.8f},
+                                         {"coat1_ior1p3", 1.0f, 1.3f},   {"coat1_ior1p6", 1.0f, 1.6f},
+                                         {"coat1_ior1p8", 1.0f, 1.8f}};
+        std::vector<FurnaceConfig> grid;
+        for (const char* base : {"diffuse", "metal", "glass"})
+        {
+            for (const Coat& coat : coats)
+            {
+                for (const float exterior_ior : {1.0f, 1.33f})
+                {
+                    for (const float film_ior : {1.2f, 1.4f, 2.0f})
+                    {
+                        for (const float thickness : {0.1f, 0.3f, 0.6f, 0.9f, 1.2f, 1.5f})
+                        {
+                            for (const float roughness : {0.1f, 0.4f, 0.8f})
+                            {
+                                const std::string base_name = base;
+                                OpenPBR_ResolvedInputs inputs = base_name == "diffuse" ? white_dielectric(roughness, 0.0f)
+                                                                : base_name == "metal" ? white_metal(roughness, 0.0f)
+                                                                                       : white_glass(roughness, 1.5f);
+                                inputs.coat_color = vec3(1.0f);
+                                inputs.coat_weight = coat.weight;
+                                inputs.coat_ior = coat.ior;
+                                inputs.coat_roughness = roughness;
+                                inputs.thin_film_weight = 1.0f;
+                                inputs.thin_film_ior = film_ior;
+                                inputs.thin_film_thickness = thickness;
+                                FurnaceConfig config{"film_" + base_name + "_" + coat.name + "_" +
+                                                         (exterior_ior > 1.0f ? "water" : "air") + "_n" +
+                                                         furnace_number(film_ior) + "_d" + furnace_number(thickness) +
+                                                         "_r" + furnace_number(roughness),
+                                                     inputs, FurnaceExpectation::thin_film_grid};
+                                config.exterior_ior = exterior_ior;
+                                config.view_cosines = {1.0f, 0.5f, 0.1f};
+                                grid.push_back(config);
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        return grid;
+    }();
+    return configs;
+}
+
 const std::vector<float>& white_furnace_view_cosines()
 {
     static const std::vector<float> cosines = {1.0f, 0.5f, 0.1f, 0.02f, 1e-3f};
@@ -343,6 +399,10 @@ double furnace_min_albedo(FurnaceExpectation expectation, float cos_theta)
     if (expectation == FurnaceExpectation::energy_conserving)
     {
         return cos_theta >= furnace_tolerance_min_cos ? 1.0 - furnace_tolerance : 0.0;
+    }
+    if (expectation == FurnaceExpectation::thin_film_grid)
+    {
+        return cos_theta >= furnace_tolerance_min_cos ? 0.99 : 0.0;
     }
     if (expectation == FurnaceExpectation::relative_ior_sweep)
     {
@@ -511,7 +571,7 @@ std::vector<FurnaceRow> run_white_furnace(const FurnaceOptions& options, std::ve
     std::vector<RowKey> gpu_keys;
     std::vector<StabilityCase> gpu_cases;
     std::uint64_t seed = 1;
-    for (const FurnaceConfig& config : white_furnace_configs())
+    for (const FurnaceConfig& config : options.film_grid ? film_furnace_configs() : white_furnace_configs())
     {
         if (!options.name_filter.empty() && config.name.find(options.name_filter) == std::string::npos)
         {

@@ -26,6 +26,9 @@ enum class FurnaceExpectation
     // included): albedo in [0.99, 1.005] at view cos >= 0.1, in [0.97, 1.005] at cos >= 0.02;
     // closer to grazing only the 1.005 bound.
     relative_ior_sweep,
+    // The filmed grid (film_furnace_configs): the sweep's bands, albedo in [0.99, 1.005] at view
+    // cos >= 0.1, never above 1.005.
+    thin_film_grid,
 };
 
 enum class FurnaceSide
@@ -55,6 +58,14 @@ struct FurnaceConfig
 // over a white base, thin-walled glass and IOR 3, at several roughnesses.
 const std::vector<FurnaceConfig>& white_furnace_configs();
 
+// The filmed white furnace (issue 31's grid): a thin film of IOR 1.2, 1.4 or 2 and thickness
+// 0.1-1.5 um over a white diffuse base, a white metal and white glass, under no coat or a white
+// coat of weight 0.5 or 1 and IOR 1.3, 1.6 or 1.8, coat and specular roughness 0.1, 0.4 or 0.8,
+// in air and in water (exterior IOR 1.33), at view cos 1, 0.5 and 0.1: 2268 configurations,
+// 6804 rows, each held to the band of FurnaceExpectation::thin_film_grid. Names:
+// film_<base>_<coat>_<medium>_n<film IOR>_d<thickness>_r<roughness>, e.g.
+// film_diffuse_coat1_ior1p8_air_n1p4_d0p9_r0p4.
+const std::vector<FurnaceConfig>& film_furnace_configs();
 // View cosines of the furnace, e.g. {1, 0.5, 0.1, 0.02, 0.001}: the tolerance applies from
 // 0.1 up, the no-gain bound everywhere.
 const std::vector<float>& white_furnace_view_cosines();
@@ -130,6 +141,9 @@ struct FurnaceOptions
     // (host/checks/stability.h: random u, the mean of the sample weights). Empty = {"cpu"}.
     std::vector<std::string> paths;
     std::string kernel_directory;  // compiled kernels for GPU paths, e.g. build/kernels
+    // Run the filmed grid (film_furnace_configs) instead of white_furnace_configs, e.g. true
+    // for `openpbr furnace --film`.
+    bool film_grid = false;
 };
 
 struct FurnaceRow

@@ -67,6 +67,9 @@ CLI::App* add_furnace_subcommand(CLI::App& parent, const CommandContext& context
     command->add_option("--paths", settings->furnace.paths,
                         "paths to run, e.g. cpu slang-spirv (default: cpu; GPU paths take the rows at the default "
                         "wavelengths)");
+    command->add_flag("--film", settings->furnace.film_grid,
+                      "the filmed grid (film_furnace_configs in host/checks/furnace.h: 6804 rows) instead of the "
+                      "specification's list");
     command->callback([settings, context]() {
         run_command([&]() {
             settings->furnace.kernel_directory = context.kernel_directory;

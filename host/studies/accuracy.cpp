@@ -213,11 +213,12 @@ AlbedoErrors albedo_errors(const std::vector<double>& model, const std::vector<d
 // ---- Tables of other sizes and precisions ---------------------------------------------------
 
 // The shipped flat table with table 0 replaced by one of `size` x `size` nodes (the layout of
-// slang/openpbr_lut.h with OPENPBR_LUT_2D_SIZE = size), cached in the cache directory.
+// slang/openpbr_lut.h with OPENPBR_LUT_2D_SIZE = size; the film table 5 follows the
+// compensation tables as in the shipped array), cached in the cache directory.
 std::vector<float> table_with_2d_size(int size, std::uint32_t samples, const std::filesystem::path& cache_directory)
 {
     const LutLayout shipped = compiled_lut_layout();
-    const std::vector<float> shipped_values(openpbr_lut_data, openpbr_lut_data + shipped.total_count());
+    const std::vector<float> shipped_values(openpbr_lut_data, openpbr_lut_data + OPENPBR_LUT_TOTAL_COUNT);
     LutLayout layout = shipped;
     layout.size_2d = size;
     const std::filesystem::path cache_file =
@@ -228,14 +229,14 @@ std::vector<float> table_with_2d_size(int size, std::uint32_t samples, const std
     {
         try
         {
-            return read_lut_binary(cache_file, layout.total_count());
+            return read_lut_binary(cache_file, layout.total_count() + OPENPBR_LUT_FILM_COUNT);
         }
         catch (const std::exception&)
         {
             // A damaged cache entry is regenerated below.
         }
     }
-    std::vector<float> values(layout.total_count());
+    std::vector<float> values(layout.total_count() + OPENPBR_LUT_FILM_COUNT);
     const std::size_t cells = std::size_t(size) * std::size_t(size);
     tbb::parallel_for(std::size_t(0), cells, [&](std::size_t cell) {
         const double mu = double(cell % std::size_t(size)) / double(size - 1);

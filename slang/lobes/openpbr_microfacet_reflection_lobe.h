@@ -257,42 +257,117 @@ OPENPBR_FUNC float openpbr_ggx_lobe_dielectric_reflection_albedo(float mu, float
 // A factor that is not filmed (or not active) returns 0. Exact for a mirror (one evaluation at
 // the view).
 //
-// Method, where the stack has no transition at any angle (n_o <= n_f and n_o <= n_b, e.g. in
-// air or under a coat of weight 0.5): OPENPBR_FILM_ESTIMATE_NODE_COUNT visible normals (a rank-1
-// lattice through the spherical-cap sampler) are split at their mean cosine into two groups, and
-// the film is evaluated once per group, at the group's mean cosine, for both bases at once (they
-// share the film's harmonics). The film's phase varies across a group; averaging e^{i m delta}
-// over it damps harmonic m like the spread of a spectral lobe does, so each group passes the
-// standard deviation of its optical path 2 n_f d cos_f to the film
-// (OpenPBR_ThinFilmInputs.optical_path_spread_um).
-// Where the film can turn evanescent (n_o > n_f) or the dielectric base totally reflecting
-// (n_o > n_b) at some angle, the reflectance jumps towards 1 past that critical angle, and a thin
-// band of the most tilted microfacets carries much of the mean: grouped estimates with 8-32
-// nodes gained up to 5 % of energy on the default coated film (coat 1.6 over film 1.4). There
-// the former estimate stays (per_node below): four nodes evaluated one by one, for both bases;
-// on that material it loses up to 11 % instead (README "Known limits"). The metal was once
-// evaluated at the view only, which a lobe past the critical angle cannot bear: under a coat of
-// IOR 3 over a film of 1.5 on a base of F0 = 0 the filmed factor is 0 in red at normal incidence
-// and 1 (total reflection) for every microfacet beyond cos 0.94, so a rough anisotropic metal
-// seen head-on was selected with probability 1e-9 while it reflected, and a fuzz sample on its
-// highlight weighed 8.5e4 (fuzzer finding, fuzz/corpus/finding_filmed_metal_at_view.bin).
-// Measured against a 96 x 96-node average (docs/performance.md "The thin film's albedo
-// estimate"): largest / mean error of the dielectric's change, four nodes -> two groups: in air
-// 0.023 / 0.0026 -> 0.014 / 0.0014; under IOR 1.3 0.134 / 0.0063 -> 0.038 / 0.0034; the metal's
-// largest error 0.44-0.56 -> 0.04-0.05.
-#ifndef OPENPBR_FILM_ESTIMATE_NODE_COUNT
-#define OPENPBR_FILM_ESTIMATE_NODE_COUNT 8  // e.g. 8 (at least 4: the per-node estimate's nodes)
+// Method. The filmed reflectance is a smooth function of the microfacet cosine c except at
+// the stack's critical cosines, where it bends sharply: the film's, past which the film is
+// evanescent (n_o sin theta >= n_f: frustrated total reflection, e.g. under a coat denser than
+// the film), and the dielectric base's, past which the base reflects totally with or without
+// the film (n_o sin theta >= n_b). A quadrature over c that ignores them weighs the wrong
+// microfacets: four visible normals evaluated one by one lost up to 13.6 % and gained up to
+// 5.8 % in a white furnace under a coat. So the lobe's light is cut at those critical cosines
+// into regions, with the exact share on each side from table 5 (the quantiles Q(p) and partial
+// moments of c for this view and roughness, host/tables/film_table_generator.h;
+// openpbr_film_lobe_cumulative inverts Q), and each region is evaluated on its own:
+//  * below the base's critical cosine the dielectric's change is 0 (it reflects totally, filmed
+//    or not); only a filmed metal is evaluated there, once, at the region's median;
+//  * a region whose lower end is a critical cosine (the evanescent film between the two
+//    critical cosines, or the propagating film just past the film's) is split into two halves
+//    of equal share, each evaluated at its median cosine Q(p_mid). The film's quantities change
+//    like sqrt(c^2 - c_crit^2) there, and quantiles, unlike means, follow any monotonic change of
+//    variable: the median cosine gives the median optical path, and the quartiles its spread;
+//  * the region with no critical cosine below it (the whole lobe in air) is split at its mean
+//    cosine, each half evaluated at its mean, as the grouped estimate did (its error in air,
+//    0.009, halves that of medians).
+// The film's phase varies across a segment; averaging e^{i m delta} over it damps harmonic m
+// like the spread of a spectral lobe does, so each segment passes the standard deviation of its
+// optical path 2 n_f d cos_f to the film (OpenPBR_ThinFilmInputs.optical_path_spread_um): from
+// the quartiles, (path(Q(p_75)) - path(Q(p_25))) / 1.349 (a Gaussian's interquartile range), or
+// in the mean-split region to first order in the cosine's deviation,
+// d path / d c = 2 d n_o^2 c / (n_f cos_f). At most five evaluations, both bases in each (they
+// share the film's harmonics); two in air or under a coat less dense than film and base.
+// The segments depend on the view's cosine and the lobe's roughness only, so the estimate of an
+// isotropic lobe does not depend on the view's azimuth; an anisotropic lobe reads the table at
+// its root-mean-square alpha. Measured against a 96 x 96-node lobe average
+// (tests/bsdf/test_film_estimate.cpp, docs/thin-film-estimate.md).
+// Segments of the propagating film past a critical cosine, e.g. 8 (the default) or 2 for a
+// cheaper estimate; and the first and last cut in w = sqrt(c^2 - c*^2) (0.015 and 0.53: from
+// where total reflection ends at a film's edge to where the lobe is smooth again).
+#ifndef OPENPBR_FILM_ESTIMATE_CRITICAL_SEGMENTS
+#define OPENPBR_FILM_ESTIMATE_CRITICAL_SEGMENTS 8
 #endif
-#if OPENPBR_FILM_ESTIMATE_NODE_COUNT < 4
-#error "OPENPBR_FILM_ESTIMATE_NODE_COUNT must be at least 4 (the node arrays also hold the per-node estimate's four)"
+#if OPENPBR_FILM_ESTIMATE_CRITICAL_SEGMENTS < 2
+#error "OPENPBR_FILM_ESTIMATE_CRITICAL_SEGMENTS must be at least 2"
 #endif
-#define OPENPBR_FILM_ESTIMATE_PER_NODE_COUNT 4
+#define OPENPBR_FILM_ESTIMATE_FIRST_CUT 0.015f
+#define OPENPBR_FILM_ESTIMATE_LAST_CUT 0.53f
+// Metal below the base's critical cosine (1), the evanescent film (2), the propagating film (its
+// segments and the median's).
+#define OPENPBR_FILM_ESTIMATE_MAX_SEGMENTS (4 + OPENPBR_FILM_ESTIMATE_CRITICAL_SEGMENTS)
 
-// Cosine of the angle beyond which a layer of IOR n under a medium of IOR n_o reflects totally
-// (n_o sin theta = n); 0 when there is none (n >= n_o).
 OPENPBR_FUNC float openpbr_critical_cosine(float n, float n_o)
 {
     return n >= n_o ? 0.0f : openpbr_safe_sqrt(1.0f - openpbr_square(n / n_o));
+}
+
+// Optical path 2 d n_f cos_f of a film at outside cosine c; film_offset = (n_f - n_o)(n_f + n_o),
+// 0 where the film is evanescent.
+OPENPBR_FUNC float openpbr_film_optical_path(float thickness_um, float film_offset, float n_o, float cosine)
+{
+    return 2.0f * thickness_um * openpbr_safe_sqrt(film_offset + openpbr_square(n_o * cosine));
+}
+
+// One segment of the lobe for openpbr_base_film_estimate: where the film is evaluated and with
+// which spread, and the shares of the light the two bases give it.
+struct OpenPBR_FilmSegment
+{
+    float cosine;
+    float path_spread_um;
+    float dielectric_share;  // 0: the dielectric is not evaluated here (total reflection)
+    float metal_share;
+};
+
+OPENPBR_FUNC OpenPBR_FilmSegment openpbr_film_segment(float cosine, float path_spread_um, float dielectric_share,
+                                                      float metal_share)
+{
+    OpenPBR_FilmSegment segment;
+    segment.cosine = clamp(cosine, 0.0f, 1.0f);
+    segment.path_spread_um = path_spread_um;
+    segment.dielectric_share = dielectric_share;
+    segment.metal_share = metal_share;
+    return segment;
+}
+
+// The segment of the lobe's light between shares p_start and p_end, at its median cosine with the
+// quartiles' path spread.
+OPENPBR_FUNC OpenPBR_FilmSegment openpbr_film_median_segment(OPENPBR_IN(OpenPBR_FilmLobeTable) table, float p_start,
+                                                             float p_end, float thickness_um, float film_offset,
+                                                             float n_o, bool with_dielectric, bool with_metal)
+{
+    const float share = max(p_end - p_start, 0.0f);
+    const float lower_quartile = openpbr_film_optical_path(thickness_um, film_offset, n_o,
+                                                           openpbr_film_lobe_quantile(table, p_start + 0.25f * share));
+    const float upper_quartile = openpbr_film_optical_path(thickness_um, film_offset, n_o,
+                                                           openpbr_film_lobe_quantile(table, p_start + 0.75f * share));
+    return openpbr_film_segment(openpbr_film_lobe_quantile(table, p_start + 0.5f * share),
+                                abs(upper_quartile - lower_quartile) * (1.0f / 1.349f), with_dielectric ? share : 0.0f,
+                                with_metal ? share : 0.0f);
+}
+
+// The segment between two cumulative bounds (share, E[c; .]), at its mean cosine, with the
+// quartiles' path spread. (A variance from tabulated second moments was tried and dropped:
+// between the table's view and roughness nodes second moments blend as a mixture of the
+// neighbouring lobes, whose spread of means, e.g. 0.012 in cosine between the nodes around a view
+// cosine of 0.5, dwarfs the width of a near-mirror lobe and damped its fringes away, an error of
+// 0.105 in the dielectric's change under a coat of IOR 1.6, 0.022 with the quartiles; quantiles
+// and first moments blend as the lobes shift.)
+OPENPBR_FUNC OpenPBR_FilmSegment openpbr_film_mean_segment(OPENPBR_IN(OpenPBR_FilmLobeTable) table, vec2 start, vec2 end,
+                                                           float thickness_um, float film_offset, float n_o,
+                                                           bool with_dielectric, bool with_metal)
+{
+    const float share = max(end.x - start.x, 0.0f);
+    const float cosine = share > 0.0f ? (end.y - start.y) / share : 0.0f;
+    const OpenPBR_FilmSegment quartiles = openpbr_film_median_segment(table, start.x, end.x, thickness_um, film_offset, n_o,
+                                                                      with_dielectric, with_metal);
+    return openpbr_film_segment(cosine, quartiles.path_spread_um, quartiles.dielectric_share, quartiles.metal_share);
 }
 
 OPENPBR_FUNC OpenPBR_FresnelPair openpbr_base_film_estimate(OPENPBR_IN(OpenPBR_Fresnel) dielectric, bool dielectric_active,
@@ -309,102 +384,133 @@ OPENPBR_FUNC OpenPBR_FresnelPair openpbr_base_film_estimate(OPENPBR_IN(OpenPBR_F
     const float thickness_um = dielectric_filmed ? dielectric.film_thickness_um : metal.film_thickness_um;
     // (n_f cos_f)^2 = (n_f - n_o)(n_f + n_o) + (n_o cos)^2 (openpbr_thin_film_normal_term).
     const float film_offset = (n_f - n_o) * (n_f + n_o);
-    const bool has_transition = openpbr_critical_cosine(n_f, n_o) > 0.0f ||
-                                (dielectric_filmed && openpbr_critical_cosine(dielectric.base_ior, n_o) > 0.0f);
+    const float film_critical = openpbr_critical_cosine(n_f, n_o);
+    const float base_critical = dielectric_filmed ? openpbr_critical_cosine(dielectric.base_ior, n_o) : 0.0f;
 
-    // Visible normals: cosine to the view and reflected fraction G2 / G1.
-    const bool is_delta = openpbr_ggx_is_delta(alpha);
-    const bool per_node = has_transition && !is_delta;
-    const int node_count =
-        is_delta ? 1 : (per_node ? OPENPBR_FILM_ESTIMATE_PER_NODE_COUNT : OPENPBR_FILM_ESTIMATE_NODE_COUNT);
-    const float lambda_view = is_delta ? 0.0f : openpbr_ggx_lambda(view, alpha);
-    float node_cosine[OPENPBR_FILM_ESTIMATE_NODE_COUNT];
-    float node_weight[OPENPBR_FILM_ESTIMATE_NODE_COUNT];
-    float weight_sum = 0.0f;
-    float weighted_cosine_sum = 0.0f;
-    for (int node = 0; node < node_count; ++node)
+    OpenPBR_FilmSegment segments[OPENPBR_FILM_ESTIMATE_MAX_SEGMENTS];
+    int segment_count = 0;
+    if (openpbr_ggx_is_delta(alpha))
     {
-        float cos_microfacet = view.z;
-        float weight = 1.0f;
-        if (!is_delta)
-        {
-            const vec2 u = vec2(fract(0.5f + 0.618034f * float(node)), (float(node) + 0.5f) / float(node_count));
-            const vec3 microfacet = openpbr_sample_vndf_spherical_cap(view, alpha, u);
-            cos_microfacet = dot(view, microfacet);
-            const vec3 light = 2.0f * cos_microfacet * microfacet - view;
-            weight = light.z > 0.0f ? (1.0f + lambda_view) / (1.0f + lambda_view + openpbr_ggx_lambda(light, alpha)) : 0.0f;
-        }
-        node_cosine[node] = cos_microfacet;
-        node_weight[node] = weight;
-        weight_sum += weight;
-        weighted_cosine_sum += weight * cos_microfacet;
+        // A mirror reflects at the view.
+        segments[0] = openpbr_film_segment(view.z, 0.0f, dielectric_filmed && base_critical <= view.z ? 1.0f : 0.0f,
+                                           metal_filmed ? 1.0f : 0.0f);
+        segment_count = 1;
     }
-    const float mean_cosine = weight_sum > 0.0f ? weighted_cosine_sum / weight_sum : view.z;
+    else
+    {
+        const OpenPBR_FilmLobeTable table =
+            openpbr_film_lobe_table(view.z, sqrt(0.5f * (alpha.x * alpha.x + alpha.y * alpha.y)));
+        // Shares below the two critical cosines.
+        const vec2 below_base = base_critical > 0.0f ? openpbr_film_lobe_cumulative(table, base_critical) : vec2(0.0f);
+        const vec2 below_film = film_critical > base_critical ? openpbr_film_lobe_cumulative(table, film_critical) : below_base;
+        // Total reflection at the base: the metal only.
+        if (metal_filmed && below_base.x > 1e-6f)
+        {
+            segments[segment_count] = openpbr_film_median_segment(table, 0.0f, below_base.x, thickness_um, film_offset, n_o,
+                                                                  false, true);
+            ++segment_count;
+        }
+        // The evanescent film between the two critical cosines: two halves of equal share at
+        // their medians (no fringes there; the halves follow the rise towards total reflection).
+        if (below_film.x - below_base.x > 1e-6f)
+        {
+            const float middle = 0.5f * (below_base.x + below_film.x);
+            segments[segment_count] = openpbr_film_median_segment(table, below_base.x, middle, thickness_um, film_offset, n_o,
+                                                                  dielectric_filmed, metal_filmed);
+            segments[segment_count + 1] = openpbr_film_median_segment(table, middle, below_film.x, thickness_um, film_offset,
+                                                                      n_o, dielectric_filmed, metal_filmed);
+            segment_count += 2;
+        }
+        // The propagating film above the higher critical cosine c*: cut where
+        // w = sqrt(c^2 - c*^2) crosses OPENPBR_FILM_ESTIMATE_CRITICAL_SEGMENTS - 1 thresholds spaced
+        // geometrically from OPENPBR_FILM_ESTIMATE_FIRST_CUT to OPENPBR_FILM_ESTIMATE_LAST_CUT, and
+        // at the median of the region's light, each segment at its mean cosine. Past c* the
+        // stack's quantities are smooth functions of w (n_o w is the film's or the base's n cos
+        // in it), not of c, and the reflectance falls from total reflection on the scale of w
+        // itself: cells even in c or in the lobe's share put that fall inside one cell (largest
+        // error of the dielectric's change 0.04 with two halves at their medians). The median
+        // keeps two segments in a near-mirror lobe that lies between two thresholds.
+        const float lowest = max(film_critical, base_critical);
+        if (lowest > 0.0f)
+        {
+            const vec2 region_start = lowest == film_critical ? below_film : below_base;
+            const float median_cosine = openpbr_film_lobe_quantile(table, 0.5f * (region_start.x + 1.0f));
+            bool median_done = false;
+            vec2 start = region_start;
+            for (int cut = 0; cut <= OPENPBR_FILM_ESTIMATE_CRITICAL_SEGMENTS; ++cut)
+            {
+                float cut_cosine = 2.0f;  // the last segment ends above every cosine
+                if (cut + 1 < OPENPBR_FILM_ESTIMATE_CRITICAL_SEGMENTS)
+                {
+                    const float step = OPENPBR_FILM_ESTIMATE_CRITICAL_SEGMENTS > 2
+                                           ? float(cut) / float(OPENPBR_FILM_ESTIMATE_CRITICAL_SEGMENTS - 2)
+                                           : 0.5f;
+                    const float w = OPENPBR_FILM_ESTIMATE_FIRST_CUT *
+                                    pow(OPENPBR_FILM_ESTIMATE_LAST_CUT / OPENPBR_FILM_ESTIMATE_FIRST_CUT, step);
+                    cut_cosine = sqrt(lowest * lowest + w * w);
+                }
+                // The median cut, in its place among the thresholds (one pass more).
+                if (!median_done && median_cosine < cut_cosine)
+                {
+                    cut_cosine = median_cosine;
+                    median_done = true;
+                    --cut;
+                }
+                else if (cut == OPENPBR_FILM_ESTIMATE_CRITICAL_SEGMENTS)
+                {
+                    break;
+                }
+                const vec2 end = cut_cosine > 1.0f ? openpbr_film_lobe_total(table)
+                                                   : openpbr_film_lobe_cumulative(table, cut_cosine);
+                if (end.x - start.x > 1e-6f)
+                {
+                    segments[segment_count] = openpbr_film_mean_segment(table, start, end, thickness_um, film_offset, n_o,
+                                                                        dielectric_filmed, metal_filmed);
+                    ++segment_count;
+                }
+                start = end.x > start.x ? end : start;
+            }
+        }
+        // No critical cosine: the whole lobe, split at its mean cosine.
+        if (lowest <= 0.0f)
+        {
+            const vec2 whole = openpbr_film_lobe_total(table);
+            const vec2 at_mean = openpbr_film_lobe_cumulative(table, whole.y);
+            segments[0] = openpbr_film_mean_segment(table, vec2(0.0f), at_mean, thickness_um, film_offset, n_o, dielectric_filmed,
+                                                    metal_filmed);
+            segments[1] = openpbr_film_mean_segment(table, at_mean, whole, thickness_um, film_offset, n_o, dielectric_filmed,
+                                                    metal_filmed);
+            segment_count = 2;
+        }
+    }
 
-    // Film evaluations at one call site, both bases in each: the two groups (below and above the
-    // mean cosine), or the nodes one by one.
-    const int evaluation_count = per_node ? node_count : 2;
+    // One film evaluation per segment, both bases in each, at one call site.
     vec3 dielectric_sum = vec3(0.0f);
     vec3 metal_sum = vec3(0.0f);
-    float dielectric_weight_sum = 0.0f;
-    float metal_weight_sum = 0.0f;
-    for (int evaluation = 0; evaluation < evaluation_count; ++evaluation)
+    for (int index = 0; index < segment_count; ++index)
     {
-        float weight = 0.0f;
-        float cosine = view.z;
-        float path_spread = 0.0f;
-        if (per_node)
+        const OpenPBR_FilmSegment segment = segments[index];
+        const bool with_dielectric = segment.dielectric_share > 1e-6f;
+        const bool with_metal = segment.metal_share > 1e-6f;
+        if (!(with_dielectric || with_metal))
         {
-            // A lobe without any reflected node keeps them all at unit weight.
-            weight = weight_sum > 0.0f ? node_weight[evaluation] : 1.0f;
-            cosine = node_cosine[evaluation];
+            continue;
         }
-        else
+        const OpenPBR_FresnelPair pair = openpbr_fresnel_evaluate_base_pair_spread(
+            untinted, with_dielectric, metal, with_metal, segment.cosine, segment.path_spread_um);
+        if (with_dielectric)
         {
-            float cosine_sum = 0.0f;
-            float path_sum = 0.0f;
-            float path_squared_sum = 0.0f;
-            for (int node = 0; node < node_count; ++node)
-            {
-                const float node_cos = node_cosine[node];
-                // A lobe without any reflected node keeps them all at unit weight.
-                const float node_w = weight_sum > 0.0f ? node_weight[node] : 1.0f;
-                if ((node_cos >= mean_cosine ? 1 : 0) == evaluation && node_w > 0.0f)
-                {
-                    const float path = 2.0f * thickness_um * openpbr_safe_sqrt(film_offset + openpbr_square(n_o * node_cos));
-                    weight += node_w;
-                    cosine_sum += node_w * node_cos;
-                    path_sum += node_w * path;
-                    path_squared_sum += node_w * path * path;
-                }
-            }
-            if (weight > 0.0f)
-            {
-                const float inverse_weight = 1.0f / weight;
-                cosine = cosine_sum * inverse_weight;
-                const float path_mean = path_sum * inverse_weight;
-                path_spread = openpbr_safe_sqrt(path_squared_sum * inverse_weight - path_mean * path_mean);
-            }
+            dielectric_sum +=
+                segment.dielectric_share * (pair.first - vec3(openpbr_fresnel_dielectric(segment.cosine, dielectric.eta)));
         }
-        if (weight > 0.0f && (dielectric_filmed || metal_filmed))
+        if (with_metal)
         {
-            const OpenPBR_FresnelPair pair = openpbr_fresnel_evaluate_base_pair_spread(untinted, dielectric_filmed, metal,
-                                                                                       metal_filmed, cosine, path_spread);
-            if (dielectric_filmed)
-            {
-                dielectric_sum += weight * (pair.first - vec3(openpbr_fresnel_dielectric(cosine, dielectric.eta)));
-                dielectric_weight_sum += weight;
-            }
-            if (metal_filmed)
-            {
-                metal_sum += weight * pair.second;
-                metal_weight_sum += weight;
-            }
+            metal_sum += segment.metal_share * pair.second;
         }
     }
     OpenPBR_FresnelPair result;
-    result.first = dielectric_weight_sum > 0.0f ? dielectric_sum / dielectric_weight_sum : vec3(0.0f);
-    result.second = metal_weight_sum > 0.0f ? metal_sum / metal_weight_sum : vec3(0.0f);
+    result.first = dielectric_sum;
+    result.second = metal_sum;
     return result;
 }
 

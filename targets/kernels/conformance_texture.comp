@@ -1,6 +1,6 @@
 #version 450
 // Conformance kernel (GLSL) with texture tables (OPENPBR_USE_TEXTURE_LUTS=1): the tables are
-// the combined image samplers the library declares at bindings 6-13 (table id + 6,
+// the combined image samplers the library declares at bindings 6-14 (table id + 6,
 // slang/openpbr_lut_textures.h); queries, materials, parameters and results as in
 // conformance.comp (bindings 2-5; no table buffers).
 #extension GL_GOOGLE_include_directive : require

@@ -55,7 +55,8 @@ const int m4 = layout.size_4d_anisotropy;
 
 const std::vector<float>& shipped()
 {
-    static const std::vector<float> data = read_lut_binary(OPENPBR_LUT_BIN_PATH);
+    // The whole buffer: the compensation tables, then the film table (slang/openpbr_lut.h).
+    static const std::vector<float> data = read_lut_binary(OPENPBR_LUT_BIN_PATH, 0);
     return data;
 }
 
@@ -218,25 +219,35 @@ double quadrature_albedo(const int table, const double mu_value, const double r,
 
 TEST(LutGenerator, ShippedBinaryHasTheCompiledLayout)
 {
-    EXPECT_EQ(shipped().size(), layout.total_count());
-    EXPECT_EQ(std::filesystem::file_size(OPENPBR_LUT_BIN_PATH), layout.total_count() * sizeof(float));
+    EXPECT_EQ(layout.total_count(), std::size_t(OPENPBR_LUT_COMPENSATION_COUNT));
+    EXPECT_EQ(shipped().size(), layout.total_count() + OPENPBR_LUT_FILM_COUNT);
+    EXPECT_EQ(std::filesystem::file_size(OPENPBR_LUT_BIN_PATH), std::size_t(OPENPBR_LUT_TOTAL_COUNT) * sizeof(float));
 }
 
-TEST(LutGenerator, ShippedIncAndBinaryHoldTheSameFloats)
+// openpbr_lut.bin is the compensation tables' .inc followed by the film table's .inc.
+TEST(LutGenerator, ShippedIncsAndBinaryHoldTheSameFloats)
 {
-    const std::vector<float> from_inc = read_lut_values_inc(OPENPBR_LUT_INC_PATH);
-    ASSERT_EQ(from_inc.size(), shipped().size());
-    for (std::size_t i = 0; i < from_inc.size(); ++i)
+    std::vector<float> from_incs = read_lut_values_inc(OPENPBR_LUT_INC_PATH);
+    const std::vector<float> film = read_lut_values_inc(OPENPBR_FILM_LUT_INC_PATH);
+    EXPECT_EQ(from_incs.size(), std::size_t(OPENPBR_LUT_COMPENSATION_COUNT));
+    EXPECT_EQ(film.size(), std::size_t(OPENPBR_LUT_FILM_COUNT));
+    from_incs.insert(from_incs.end(), film.begin(), film.end());
+    ASSERT_EQ(from_incs.size(), shipped().size());
+    for (std::size_t i = 0; i < from_incs.size(); ++i)
     {
-        ASSERT_EQ(std::memcmp(&from_inc[i], &shipped()[i], sizeof(float)), 0)
-            << "entry " << i << ": .inc " << from_inc[i] << ", .bin " << shipped()[i];
+        ASSERT_EQ(std::memcmp(&from_incs[i], &shipped()[i], sizeof(float)), 0)
+            << "entry " << i << ": .inc " << from_incs[i] << ", .bin " << shipped()[i];
     }
 }
 
-TEST(LutGenerator, ShippedIncLiteralsAreValidInEveryShadingLanguage)
+class ShippedInc : public ::testing::TestWithParam<std::pair<const char*, std::size_t>>
+{
+};
+
+TEST_P(ShippedInc, LiteralsAreValidInEveryShadingLanguage)
 {
     // GLSL needs a decimal point or an exponent before the "f" suffix ("1f" is an error there).
-    std::ifstream file(OPENPBR_LUT_INC_PATH);
+    std::ifstream file(GetParam().first);
     std::string line;
     std::size_t literals = 0;
     while (std::getline(file, line))
@@ -254,8 +265,15 @@ TEST(LutGenerator, ShippedIncLiteralsAreValidInEveryShadingLanguage)
         EXPECT_NE(line.find_first_of(".eE"), std::string::npos) << line;
         ++literals;
     }
-    EXPECT_EQ(literals, layout.total_count());
+    EXPECT_EQ(literals, GetParam().second);
 }
+
+INSTANTIATE_TEST_SUITE_P(CompensationAndFilm, ShippedInc,
+                         ::testing::Values(std::make_pair(OPENPBR_LUT_INC_PATH, std::size_t(OPENPBR_LUT_COMPENSATION_COUNT)),
+                                           std::make_pair(OPENPBR_FILM_LUT_INC_PATH, std::size_t(OPENPBR_LUT_FILM_COUNT))),
+                         [](const ::testing::TestParamInfo<std::pair<const char*, std::size_t>>& info) {
+                             return std::string(info.index == 0 ? "compensation" : "film");
+                         });
 
 // A regeneration with 4096 samples per cell (instead of the shipped 65536) must reproduce the
 // shipped tables. Every sample weight lies in [0, 1], so plain Monte Carlo with 4096 samples
@@ -272,10 +290,12 @@ TEST(LutGenerator, LowSampleRegenerationMatchesTheShippedTables)
     const auto start = std::chrono::steady_clock::now();
     const std::vector<float> regenerated = generate_lut(options);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    ASSERT_EQ(regenerated.size(), shipped().size());
+    // The compensation tables: the shipped buffer without the film table that follows them.
+    const std::vector<float> compensation(shipped().begin(), shipped().begin() + std::ptrdiff_t(layout.total_count()));
+    ASSERT_EQ(regenerated.size(), compensation.size());
     for (int table = 0; table < lut_table_count; ++table)
     {
-        const double difference = max_abs_difference(regenerated, shipped(), table);
+        const double difference = max_abs_difference(regenerated, compensation, table);
         std::printf("  %-24s max |4096 samples - shipped| = %.2e\n", lut_table_name(table), difference);
         EXPECT_LE(difference, 0.01) << lut_table_name(table);
     }

@@ -15,6 +15,8 @@ namespace {
 
 const float lut_values[] = {
 #include "slang/generated/openpbr_lut_values.inc"
+,
+#include "slang/generated/openpbr_film_lut_values.inc"
 };
 const float fuzz_values[] = {
 #include "slang/generated/openpbr_fuzz_ltc_values.inc"
@@ -45,6 +47,9 @@ Texture texture_of(int lut_id)
     case OPENPBR_LUT_TEXTURE_GGX_ANISOTROPY_RATIO:
         return {lut_values + OPENPBR_LUT_GGX_ANISOTROPY_RATIO_OFFSET, OPENPBR_LUT_4D_SIZE, OPENPBR_LUT_4D_SIZE,
                 OPENPBR_LUT_4D_ANISOTROPY_SIZE * OPENPBR_LUT_4D_ANISOTROPY_SIZE};
+    case OPENPBR_LUT_TEXTURE_FILM_LOBE:
+        return {lut_values + OPENPBR_LUT_FILM_OFFSET, OPENPBR_LUT_FILM_QUANTILE_SIZE, OPENPBR_LUT_FILM_SIZE,
+                OPENPBR_LUT_FILM_CHANNEL_COUNT * OPENPBR_LUT_FILM_SIZE};
     case OPENPBR_LUT_TEXTURE_FUZZ_LTC_A:
         return {fuzz_values + OPENPBR_FUZZ_LTC_A_OFFSET, OPENPBR_FUZZ_LTC_SIZE, OPENPBR_FUZZ_LTC_SIZE, 1};
     case OPENPBR_LUT_TEXTURE_FUZZ_LTC_B:
