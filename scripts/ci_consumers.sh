@@ -15,8 +15,9 @@ if [[ -z "$work_dir" ]]; then
   trap 'rm -rf "$work_dir"' EXIT
 fi
 prefix="$work_dir/prefix"
-generator=()
-command -v ninja >/dev/null && generator=(-G Ninja)
+# shellcheck source=scripts/common.sh
+source "$repo_root/scripts/common.sh"
+mapfile -t common_flags < <(openpbr_cmake_flags)
 export MESA_SHADER_CACHE_DIR="$build_dir/mesa-shader-cache"
 mkdir -p "$MESA_SHADER_CACHE_DIR"
 
@@ -32,7 +33,7 @@ consumer() {
   consumer_start=$(date +%s)
   # Configure and build quietly; on failure the whole log is printed (compiler errors included).
   local log="$work_dir/$name.log"
-  if ! { cmake -S "$repo_root/examples/$name" -B "$work_dir/$name" "${generator[@]}" -DCMAKE_BUILD_TYPE=Release \
+  if ! { cmake -S "$repo_root/examples/$name" -B "$work_dir/$name" "${common_flags[@]}" -DCMAKE_BUILD_TYPE=Release \
            -DCMAKE_PREFIX_PATH="$prefix" "$@" && cmake --build "$work_dir/$name"; } >"$log" 2>&1; then
     cat "$log" >&2
     echo "ci_consumers: $name failed to configure or build" >&2
