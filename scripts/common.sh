@@ -87,14 +87,14 @@ step_times_print() {
   echo
   echo "step times ($(nproc) cores; load average at the end: $(cut -d ' ' -f 1-3 /proc/loadavg)):"
   awk -F '\t' -v total="$(awk -v start="$step_times_started" -v end="$EPOCHREALTIME" 'BEGIN { print end - start }')" '
-    BEGIN { printf "  %-34s %9s %9s  %s\n", "step", "wall s", "CPU s", "status" }
+    BEGIN { printf "  %-40s %9s %9s  %s\n", "step", "wall s", "CPU s", "status" }
     {
-      printf "  %-34s %9.1f %9.1f  %s\n", $1 ($2 == "install" ? " (install)" : ""), $3, $4, ($5 == 0 ? "ok" : "exit " $5)
+      printf "  %-40s %9.1f %9.1f  %s\n", $1 ($2 == "install" ? " (install)" : ""), $3, $4, ($5 == 0 ? "ok" : "exit " $5)
       if ($2 == "install") { install += $3 }
     }
     END {
-      printf "  %-34s %9.1f\n", "total", total
-      printf "  %-34s %9.1f\n", "total without package installs", total - install
+      printf "  %-40s %9.1f\n", "total", total
+      printf "  %-40s %9.1f\n", "total without package installs", total - install
     }' "$OPENPBR_STEP_TIMES_FILE"
   rm -f "$OPENPBR_STEP_TIMES_FILE"
   return "$exit_status"

@@ -69,6 +69,10 @@ elif ((${#configure_flags[@]})); then
   step_run "setup: configure" step cmake -S "$repo_root" -B "$build_dir" "${configure_flags[@]}" >/dev/null
 fi
 target_flags=()
-((${#build_targets[@]} == 0)) || target_flags=(--target "${build_targets[@]}")
+build_label=all
+if ((${#build_targets[@]})); then
+  target_flags=(--target "${build_targets[@]}")
+  build_label="${#build_targets[@]} targets"
+fi
 echo "setup: building ${build_targets[*]:-every target} in $build_dir"
-step_run "setup: build ${build_targets[*]:-(all)}" step cmake --build "$build_dir" --parallel "$(nproc)" "${target_flags[@]}"
+step_run "setup: build ($build_label)" step cmake --build "$build_dir" --parallel "$(nproc)" "${target_flags[@]}"
