@@ -46,9 +46,29 @@ consumer() {
   echo "ci_consumers: $name took $(($(date +%s) - consumer_start)) s"
 }
 
-consumer cpp_consumer
+# The three consumers run at the same time: each is mostly one process at a time (configure, a
+# small build, one run), so one after another they left a core idle (81 s in all in the
+# clean-clone run of 5fafbe5, docs/ci-time.md). Each one's output is printed whole, in order.
+names=(cpp_consumer slang_consumer hlsl_consumer)
+pids=()
+consumer cpp_consumer >"$work_dir/cpp_consumer.out" 2>&1 &
+pids+=($!)
 # The Slang compiler is the source tree's driver (node_modules from scripts/setup.sh), or a
 # native slangc through OPENPBR_SLANGC.
-consumer slang_consumer -DOPENPBR_SLANGC="${OPENPBR_SLANGC:-}" -DOPENPBR_SLANGC_DRIVER="$repo_root/targets/slangc.mjs"
-consumer hlsl_consumer
+consumer slang_consumer -DOPENPBR_SLANGC="${OPENPBR_SLANGC:-}" -DOPENPBR_SLANGC_DRIVER="$repo_root/targets/slangc.mjs" \
+  >"$work_dir/slang_consumer.out" 2>&1 &
+pids+=($!)
+consumer hlsl_consumer >"$work_dir/hlsl_consumer.out" 2>&1 &
+pids+=($!)
+failed=()
+for index in "${!names[@]}"; do
+  status=0
+  wait "${pids[$index]}" || status=$?
+  cat "$work_dir/${names[$index]}.out"
+  ((status == 0)) || failed+=("${names[$index]}")
+done
+if ((${#failed[@]})); then
+  echo "ci_consumers: failed: ${failed[*]}" >&2
+  exit 1
+fi
 echo "ci_consumers: all consumers passed in $(($(date +%s) - start)) s"
