@@ -38,7 +38,8 @@ ci_build_and_run_tests() {
   done
   step_run "$step: build" step cmake --build "$build_dir" --parallel "$jobs" --target "${targets[@]}" || return 1
   local tests_start=$EPOCHREALTIME tests_cpu_start
-  tests_cpu_start=$(step_times_children_cpu)
+  step_times_children_cpu
+  tests_cpu_start=$step_times_cpu
   # The programs run JOBS at a time: each is one process on one core, so one after another they
   # left the other core idle (scripts/ci_clang_release.sh: 97 s of tests, 64 s of them
   # test_bsdf_basics, docs/stability.md). Each writes its own log, printed whole in list order.
@@ -79,8 +80,9 @@ ci_build_and_run_tests() {
     index=$((index + 1))
   done
   rm -rf "$log_dir"
+  step_times_children_cpu
   awk -v step="$step" -v start="$tests_start" -v end="$EPOCHREALTIME" -v failed=$((${#failed[@]} > 0)) \
-    -v cpu=$(($(step_times_children_cpu) - tests_cpu_start)) -v ticks="$step_times_clock_ticks" \
+    -v cpu=$((step_times_cpu - tests_cpu_start)) -v ticks="$step_times_clock_ticks" \
     'BEGIN { printf "%s: tests\tstep\t%.1f\t%.1f\t%d\n", step, end - start, cpu / ticks, failed }' >>"$OPENPBR_STEP_TIMES_FILE"
   if ((${#failed[@]})); then
     echo "$step: failed: ${failed[*]}" >&2

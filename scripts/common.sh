@@ -37,15 +37,17 @@ openpbr_cmake_flags() {
 }
 export CCACHE_BASEDIR=${CCACHE_BASEDIR:-$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)}
 
-# CPU seconds (user + sys) of this shell's children that have ended, from /proc (no subshell,
-# whose own children would be none of ours). Fields 16 and 17 of /proc/PID/stat, clock ticks.
+# Sets step_times_cpu to the CPU time (user + sys, clock ticks) of this shell's children that
+# have ended, read from /proc/$BASHPID/stat (this shell, also when it is a background subshell
+# of the script; no command substitution, whose own children would be none of ours). Fields 16
+# and 17 of the stat line.
 step_times_children_cpu() {
   local stat fields
-  read -r stat </proc/$$/stat
+  read -r stat </proc/"$BASHPID"/stat
   # The command name (field 2) is in parentheses and may hold spaces: split after it.
   read -r -a fields <<<"${stat##*) }"
   # fields[0] is field 3 (state), so cutime (16) and cstime (17) are fields[13] and fields[14].
-  echo $((fields[13] + fields[14]))
+  step_times_cpu=$((fields[13] + fields[14]))
 }
 
 step_times_init() {
@@ -71,12 +73,12 @@ step_run() {
   local name=$1 kind=$2
   shift 2
   local wall_start=$EPOCHREALTIME cpu_start status=0
-  cpu_start=$(step_times_children_cpu)
+  step_times_children_cpu
+  cpu_start=$step_times_cpu
   "$@" || status=$?
-  local cpu_end
-  cpu_end=$(step_times_children_cpu)
+  step_times_children_cpu
   awk -v name="$name" -v kind="$kind" -v start="$wall_start" -v end="$EPOCHREALTIME" -v status="$status" \
-    -v cpu=$((cpu_end - cpu_start)) -v ticks="$step_times_clock_ticks" \
+    -v cpu=$((step_times_cpu - cpu_start)) -v ticks="$step_times_clock_ticks" \
     'BEGIN { printf "%s\t%s\t%.1f\t%.1f\t%d\n", name, kind, end - start, cpu / ticks, status }' >>"$OPENPBR_STEP_TIMES_FILE"
   return "$status"
 }
