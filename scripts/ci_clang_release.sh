@@ -11,8 +11,9 @@
 # stability corpus on the CPU. Left out, as in scripts/ci_sanitizers.sh: what creates a Vulkan
 # context (lavapipe compiles the kernels, not Clang) and the statistical suite (minutes).
 # Environment: OPENPBR_CLANG_RELEASE_BUILD_DIR (default build-clang-release),
-# OPENPBR_CLANG_RELEASE_JOBS (build jobs, default nproc), OPENPBR_STABILITY_CPU_SAMPLES (samples
-# per corpus case, default here 20000 as under the sanitizers, e.g. 200000 for the full count).
+# OPENPBR_CLANG_RELEASE_JOBS (build jobs and test programs run at once, default nproc),
+# OPENPBR_STABILITY_CPU_SAMPLES (samples per corpus case, default here 20000 as under the
+# sanitizers, e.g. 200000 for the full count).
 set -euo pipefail
 repo_root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 build_dir=${OPENPBR_CLANG_RELEASE_BUILD_DIR:-$repo_root/build-clang-release}

@@ -15,9 +15,10 @@ repo_root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 build_dir=${OPENPBR_FUZZ_BUILD_DIR:-$repo_root/build-fuzz}
 seconds=${OPENPBR_FUZZ_SECONDS:-60}
 
-generator=()
-command -v ninja >/dev/null && generator=(-G Ninja)
-cmake -S "$repo_root" -B "$build_dir" "${generator[@]}" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+# shellcheck source=scripts/common.sh
+source "$repo_root/scripts/common.sh"
+mapfile -t common_flags < <(openpbr_cmake_flags)
+cmake -S "$repo_root" -B "$build_dir" "${common_flags[@]}" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ -DOPENPBR_BUILD_HOST=OFF \
   -DOPENPBR_WARNINGS_AS_ERRORS="${OPENPBR_WARNINGS_AS_ERRORS:-OFF}" >/dev/null
 cmake --build "$build_dir" --target fuzz_bsdf

@@ -1,15 +1,17 @@
 #!/usr/bin/env bash
 # Runs the CPU unit tests under AddressSanitizer and UndefinedBehaviorSanitizer (clang,
 # -fsanitize=address,undefined -fno-sanitize-recover=all: the first report fails the test) in
-# their own build directory. Only the subset's targets are built (the host library, the kernels
-# the test targets depend on, six test programs), not the whole project: the BSDF basics and
-# lobe tests, thin film, volume, fuzz lobe, the input contract and the stability corpus on the
-# CPU (docs/stability.md lists the timings). Left out: everything that creates a Vulkan context
-# (the Vulkan loader and driver leak JIT allocations LeakSanitizer cannot attribute, and
-# lavapipe's shaders run uninstrumented anyway) and the statistical suite (minutes under ASan).
+# their own build directory. Only the subset's targets are built (the host library, six test
+# programs; the kernels they depend on are copied from build/, scripts/ci_test_subset.sh), not
+# the whole project: the BSDF basics and lobe tests, thin film, volume, fuzz lobe, the input
+# contract and the stability corpus on the CPU (docs/stability.md lists the timings). Left out:
+# everything that creates a Vulkan context (the Vulkan loader and driver leak JIT allocations
+# LeakSanitizer cannot attribute, and lavapipe's shaders run uninstrumented anyway) and the
+# statistical suite (minutes under ASan).
 # Environment: OPENPBR_SANITIZE_BUILD_DIR (default build-sanitize), OPENPBR_STABILITY_CPU_SAMPLES
 # (samples per corpus case, default here 20000, against 200000 in the plain build: ASan and
-# UBSan slow the BSDF down about 10x), OPENPBR_SANITIZE_JOBS (build jobs, default nproc).
+# UBSan slow the BSDF down about 10x), OPENPBR_SANITIZE_JOBS (build jobs and test programs run
+# at once, default nproc).
 set -euo pipefail
 repo_root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 build_dir=${OPENPBR_SANITIZE_BUILD_DIR:-$repo_root/build-sanitize}

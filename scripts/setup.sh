@@ -1,13 +1,22 @@
 #!/usr/bin/env bash
 # Shared set-up for scripts/run.sh and scripts/test.sh on Debian 12: installs only what is
 # missing (apt-get), installs the Slang compiler (npm ci), configures and builds.
+#   scripts/setup.sh              builds every target (what scripts/test.sh needs);
+#   scripts/setup.sh TARGET ...   builds only the named targets and what they depend on, e.g.
+#                                 `scripts/setup.sh openpbr_cli openpbr_kernels` (scripts/run.sh).
+# Prints how long each part took (package installs, configure, build; scripts/common.sh).
 # Environment: OPENPBR_BUILD_DIR (default build), OPENPBR_BUILD_TYPE (default RelWithDebInfo),
 # OPENPBR_WARNINGS_AS_ERRORS (unset: the cache's value, OFF in a new build; e.g. 1 in CI, which
-# .ci/run sets, for -Werror).
+# .ci/run sets, for -Werror), OPENPBR_CCACHE (default 1: compile through ccache when it is
+# installed; e.g. 0 for a build without it).
 set -euo pipefail
 repo_root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 build_dir=${OPENPBR_BUILD_DIR:-$repo_root/build}
 build_type=${OPENPBR_BUILD_TYPE:-RelWithDebInfo}
+# shellcheck source=scripts/common.sh
+source "$repo_root/scripts/common.sh"
+step_times_init
+build_targets=("$@")
 
 # Debian packages the build and the tests use, e.g. libglm-dev for the C++ backend.
 packages=(
@@ -15,7 +24,7 @@ packages=(
   libglm-dev libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers vulkan-tools
   glslang-tools spirv-tools libpugixml-dev libcli11-dev nlohmann-json3-dev libstb-dev
   libtbb-dev libgtest-dev libgmock-dev libbenchmark-dev python3 python3-matplotlib
-  libclang-rt-14-dev clang-format
+  libclang-rt-14-dev clang-format ccache
 )
 missing=()
 for package in "${packages[@]}"; do
@@ -33,25 +42,37 @@ if ((${#missing[@]})); then
   echo "setup: installing missing Debian packages: ${missing[*]}"
   sudo_cmd=()
   [[ $(id -u) -eq 0 ]] || sudo_cmd=(sudo)
-  "${sudo_cmd[@]}" apt-get update -qq
-  DEBIAN_FRONTEND=noninteractive "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}"
+  # One command line (&&): step_run runs it where set -e does not stop at a failed update.
+  install_packages() {
+    "${sudo_cmd[@]}" apt-get update -qq &&
+      DEBIAN_FRONTEND=noninteractive "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}"
+  }
+  step_run "setup: apt-get install" install install_packages
 fi
 
 # The Slang 2025.15 WebAssembly compiler, pinned in package-lock.json.
 stamp="$repo_root/node_modules/.openpbr-lock-stamp"
 if [[ ! -f "$stamp" ]] || ! cmp -s "$repo_root/package-lock.json" "$stamp"; then
   echo "setup: npm ci (Slang compiler)"
-  (cd "$repo_root" && npm ci --no-audit --no-fund --loglevel=error)
+  install_slang() { (cd "$repo_root" && npm ci --no-audit --no-fund --loglevel=error); }
+  step_run "setup: npm ci" install install_slang
   cp "$repo_root/package-lock.json" "$stamp"
 fi
 
-generator=()
-command -v ninja >/dev/null && generator=(-G Ninja)
 configure_flags=()
 [[ -z "${OPENPBR_WARNINGS_AS_ERRORS:-}" ]] || configure_flags+=(-DOPENPBR_WARNINGS_AS_ERRORS="$OPENPBR_WARNINGS_AS_ERRORS")
 if [[ ! -f "$build_dir/CMakeCache.txt" ]]; then
-  cmake -S "$repo_root" -B "$build_dir" "${generator[@]}" -DCMAKE_BUILD_TYPE="$build_type" "${configure_flags[@]}"
+  mapfile -t common_flags < <(openpbr_cmake_flags)
+  step_run "setup: configure" step cmake -S "$repo_root" -B "$build_dir" "${common_flags[@]}" \
+    -DCMAKE_BUILD_TYPE="$build_type" "${configure_flags[@]}"
 elif ((${#configure_flags[@]})); then
-  cmake -S "$repo_root" -B "$build_dir" "${configure_flags[@]}" >/dev/null
+  step_run "setup: configure" step cmake -S "$repo_root" -B "$build_dir" "${configure_flags[@]}" >/dev/null
 fi
-cmake --build "$build_dir" --parallel "$(nproc)"
+target_flags=()
+build_label=all
+if ((${#build_targets[@]})); then
+  target_flags=(--target "${build_targets[@]}")
+  build_label="${#build_targets[@]} targets"
+fi
+echo "setup: building ${build_targets[*]:-every target} in $build_dir"
+step_run "setup: build ($build_label)" step cmake --build "$build_dir" --parallel "$(nproc)" "${target_flags[@]}"

@@ -8,29 +8,47 @@
 # .clang-format (scripts/format-check.sh). Every step runs even when an earlier one fails; the
 # script fails if any did. OPENPBR_SKIP_CONSUMERS=1, OPENPBR_SKIP_SANITIZERS=1,
 # OPENPBR_SKIP_CLANG_RELEASE=1, OPENPBR_SKIP_FUZZ=1 and OPENPBR_SKIP_FORMAT=1 leave those steps
-# out, e.g. for a quick local run.
+# out, e.g. for a quick local run. Prints a table of each step's wall and CPU time at the end
+# (scripts/common.sh; docs/ci-time.md has the measured ones).
 set -euo pipefail
 repo_root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+# shellcheck source=scripts/common.sh
+source "$repo_root/scripts/common.sh"
+step_times_init
 "$repo_root/scripts/setup.sh"
 build_dir=${OPENPBR_BUILD_DIR:-$repo_root/build}
 failed=()
 ctest_status=0
-ctest --test-dir "$build_dir" --output-on-failure --parallel "$(nproc)" "$@" || ctest_status=$?
+step_run "ctest" step ctest --test-dir "$build_dir" --output-on-failure --parallel "$(nproc)" "$@" || ctest_status=$?
 ((ctest_status == 0)) || failed+=(ctest)
 if [[ "${OPENPBR_SKIP_CONSUMERS:-0}" != 1 ]]; then
-  "$repo_root/scripts/ci_consumers.sh" || failed+=(ci_consumers)
+  step_run "ci_consumers" step "$repo_root/scripts/ci_consumers.sh" || failed+=(ci_consumers)
 fi
 if [[ "${OPENPBR_SKIP_FUZZ:-0}" != 1 ]]; then
-  "$repo_root/scripts/ci_fuzz.sh" || failed+=(ci_fuzz)
+  step_run "ci_fuzz" step "$repo_root/scripts/ci_fuzz.sh" || failed+=(ci_fuzz)
 fi
-if [[ "${OPENPBR_SKIP_SANITIZERS:-0}" != 1 ]]; then
-  "$repo_root/scripts/ci_sanitizers.sh" || failed+=(ci_sanitizers)
-fi
-if [[ "${OPENPBR_SKIP_CLANG_RELEASE:-0}" != 1 ]]; then
-  "$repo_root/scripts/ci_clang_release.sh" || failed+=(ci_clang_release)
-fi
+# The sanitizer and Clang Release steps run at the same time, each into its own log, printed
+# whole in this order: each ends with its test programs, whose longest (test_bsdf_basics) ran
+# alone for half a minute with the other core idle; now that core builds or tests the other
+# step. The same builds and tests; in the step table their wall times overlap.
+clang_steps=()
+[[ "${OPENPBR_SKIP_SANITIZERS:-0}" == 1 ]] || clang_steps+=(ci_sanitizers)
+[[ "${OPENPBR_SKIP_CLANG_RELEASE:-0}" == 1 ]] || clang_steps+=(ci_clang_release)
+clang_step_pids=()
+clang_step_logs=$(mktemp -d)
+for step in "${clang_steps[@]}"; do
+  step_run "$step" step "$repo_root/scripts/$step.sh" >"$clang_step_logs/$step.log" 2>&1 &
+  clang_step_pids+=($!)
+done
+for index in "${!clang_steps[@]}"; do
+  step_status=0
+  wait "${clang_step_pids[$index]}" || step_status=$?
+  cat "$clang_step_logs/${clang_steps[$index]}.log"
+  ((step_status == 0)) || failed+=("${clang_steps[$index]}")
+done
+rm -rf "$clang_step_logs"
 if [[ "${OPENPBR_SKIP_FORMAT:-0}" != 1 ]]; then
-  "$repo_root/scripts/format-check.sh" || failed+=(format-check)
+  step_run "format-check" step "$repo_root/scripts/format-check.sh" || failed+=(format-check)
 fi
 if ((${#failed[@]})); then
   # A fuzz finding again at the end, where a truncated CI log still shows it.

@@ -53,6 +53,39 @@ TEST(Conformance, CpuOutputsAreFinite)
     EXPECT_EQ(run_paths({"cpu-only"}).cpu_nonfinite, 0u);
 }
 
+// The printed summary (`openpbr conformance`, scripts/run.sh) gives each path's verdict and
+// per-kind figures on its first line; the pooled figure, whose maximum grows with the batch
+// (1.03e-3 over 10^5 queries read as a failure against the 1e-3 bound), comes later and is
+// labelled as the old metric. A report built here, no path run.
+TEST(Conformance, SummaryLeadsWithVerdictAndLabelsPooledFigureOld)
+{
+    ConformanceReport report;
+    ConformancePathResult passing;
+    passing.name = "slang-spirv";
+    passing.executed = true;
+    passing.note = "llvmpipe";
+    passing.max_relative_error = 1.03309e-3;
+    passing.worst_output = "sample.direction.z";
+    ConformancePathResult failing = passing;
+    failing.name = "glsl-spirv";
+    failing.nonfinite = 3;
+    report.paths = {passing, failing};
+    const std::string text = openpbr::host::to_text(report);
+    const std::size_t passing_line = text.find("\n  slang-spirv: ");
+    const std::size_t failing_line = text.find("\n  glsl-spirv: ");
+    ASSERT_NE(passing_line, std::string::npos) << text;
+    ASSERT_NE(failing_line, std::string::npos) << text;
+    EXPECT_EQ(text.compare(passing_line + 16, 24, "passes; per kind: eval/p"), 0) << text;
+    EXPECT_EQ(text.compare(failing_line + 15, 23, "FAILS; per kind: eval/p"), 0) << text;
+    // Every pooled figure sits on an "old metric" line.
+    for (std::size_t at = text.find("max rel err"); at != std::string::npos; at = text.find("max rel err", at + 1))
+    {
+        const std::size_t line_start = text.rfind('\n', at) + 1;
+        EXPECT_EQ(text.compare(line_start, 14, "    old metric"), 0) << text;
+    }
+    EXPECT_NE(text.find("old metric (pooled, not the verdict): max rel err 0.00103309"), std::string::npos) << text;
+}
+
 class ConformancePath : public ::testing::TestWithParam<std::string>
 {
 };
