@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <filesystem>
+#include <functional>
 #include <limits>
 #include <map>
 #include <random>
@@ -534,7 +536,8 @@ void compare_with_cpu(ConformancePathResult& result, const std::vector<float>& q
 
 ConformancePathResult run_gpu_path(const GpuPath& path, VulkanContext& context, const std::vector<float>& queries,
                                    const std::vector<Material>& material_list, const std::vector<float>& materials,
-                                   const std::vector<float>& cpu_results, const ConformanceOptions& options)
+                                   const std::vector<float>& cpu_results, const ConformanceOptions& options,
+                                   const std::function<void(const std::string&, const std::vector<float>&)>& dump)
 {
     ConformancePathResult result;
     result.name = path.name;
@@ -575,6 +578,7 @@ ConformancePathResult run_gpu_path(const GpuPath& path, VulkanContext& context, 
     {
         result.note += "; validation: " + messages.front();
     }
+    dump(path.name, batch.results);
     compare_with_cpu(result, queries, materials, batch.results, cpu_results);
     return result;
 }
@@ -818,6 +822,15 @@ ConformanceReport run_conformance(const std::vector<Material>& materials, const 
     {
         write_float32_file(options.cpu_dump_path, cpu_results);
     }
+    // Each executed path's raw results under options.dump_directory (nothing when it is empty).
+    const auto dump = [&options](const std::string& name, const std::vector<float>& results) {
+        if (!options.dump_directory.empty())
+        {
+            std::filesystem::create_directories(options.dump_directory);
+            write_float32_file(std::filesystem::path(options.dump_directory) / (name + ".f32"), results);
+        }
+    };
+    dump("cpu", cpu_results);
 
     std::vector<std::string> wanted = options.paths.empty() ? all_conformance_paths() : options.paths;
     // CPU paths that round like a GPU, and the CPU itself with every random number moved by one
@@ -855,6 +868,7 @@ ConformanceReport run_conformance(const std::vector<Material>& materials, const 
         const double seconds = stopwatch.seconds();
         result.queries_per_second = seconds > 0.0 ? double(queries.size() / OPENPBR_QUERY_FLOATS) / seconds : 0.0;
         result.executed = true;
+        dump(name, results);
         compare_with_cpu(result, queries, packed, results, cpu_results);
         report.paths.push_back(result);
     }
@@ -880,7 +894,8 @@ ConformanceReport run_conformance(const std::vector<Material>& materials, const 
         // executed with the reason; the other paths' results are kept.
         try
         {
-            report.paths.push_back(run_gpu_path(path, *context, queries, materials, packed, cpu_results, options));
+            report.paths.push_back(
+                run_gpu_path(path, *context, queries, materials, packed, cpu_results, options, dump));
         }
         catch (const std::exception& error)
         {
@@ -914,6 +929,7 @@ ConformanceReport run_conformance(const std::vector<Material>& materials, const 
                     result.device_ns_per_query = all->second;
                     result.queries_per_second = 1e9 / all->second;
                 }
+                dump(external.name, external.results);
                 compare_with_cpu(result, queries, packed, external.results, cpu_results);
             }
             report.paths.push_back(result);

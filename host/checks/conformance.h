@@ -30,6 +30,10 @@ struct ConformanceOptions
     // Raw CPU results (float32, OPENPBR_RESULT_FLOATS per query), e.g. "cpu.f32" to compare two
     // builds bit for bit; empty writes nothing.
     std::string cpu_dump_path;
+    // Raw results of every path that executes (DIR/<path>.f32, float32, OPENPBR_RESULT_FLOATS per
+    // query; the CPU build as DIR/cpu.f32), e.g. to check that a refactoring changed no output
+    // bit (cmp); empty writes nothing.
+    std::string dump_directory;
 };
 
 // One output channel of the per-kind metric (docs/conformance.md): a relative error with a
