@@ -3,7 +3,10 @@
 // angle, lobe agreement) on every path, CPU paths that round like a GPU included.
 #include <gtest/gtest.h>
 
+#include <filesystem>
+
 #include "host/checks/conformance.h"
+#include "host/checks/execution_path.h"
 #include "host/scene/material_library.h"
 
 namespace {
@@ -63,6 +66,11 @@ TEST_P(ConformancePath, MatchesCpuBuild)
     const ConformancePathResult& path = find_path(report, GetParam());
     if (!path.executed)
     {
+        // Where SwiftShader is installed (scripts/setup.sh, CI) a WebGPU path must run: a skip
+        // there would hide a broken dispatcher or kernel.
+        ASSERT_FALSE(openpbr::host::execution_path_has_wgsl_math(GetParam()) &&
+                     std::filesystem::exists(openpbr::host::swiftshader_vulkan_driver()))
+            << GetParam() << " not executed although SwiftShader is installed: " << path.note;
         GTEST_SKIP() << GetParam() << " not executed: " << path.note;
     }
     // Every channel of the per-kind metric got values: eval and pdf for each query, samples of
