@@ -3,7 +3,9 @@
 # temporary prefix, then configures, builds and runs the three consumers of examples/ against
 # that prefix only: cpp_consumer (find_package + BSDF checks), slang_consumer (`import openpbr;`
 # from the installed module, run on Vulkan) and hlsl_consumer (the installed openpbr.hlsl
-# through glslang's HLSL front end, run on Vulkan); the GPU two compare with the C++ build.
+# through glslang's HLSL front end, run on Vulkan); the GPU two compare with the C++ build; and
+# wgsl_consumer (the installed openpbr.wgsl under a WGSL kernel, run on WebGPU through Dawn for
+# Node, SwiftShader where there is no GPU: sample weights against eval / pdf, a white furnace).
 # Fails on any error. Environment: OPENPBR_BUILD_DIR (default build, already built),
 # OPENPBR_CONSUMER_DIR (default: a temporary directory, removed afterwards).
 set -euo pipefail
@@ -50,4 +52,6 @@ consumer cpp_consumer
 # native slangc through OPENPBR_SLANGC.
 consumer slang_consumer -DOPENPBR_SLANGC="${OPENPBR_SLANGC:-}" -DOPENPBR_SLANGC_DRIVER="$repo_root/targets/slangc.mjs"
 consumer hlsl_consumer
+# Dawn for Node comes from the source tree's node_modules (scripts/setup.sh's npm ci).
+consumer wgsl_consumer -DOPENPBR_NODE_MODULES="$repo_root/node_modules"
 echo "ci_consumers: all consumers passed in $(($(date +%s) - start)) s"

@@ -198,9 +198,9 @@ std::vector<CompiledFile> compile_targets(const CompileTargetsOptions& options)
 
         if (target == "wgsl")
         {
-            // The render kernel too (the browser viewer's), with every toggle an `override`; a
-            // driver that compiles overrides unfolded (SwiftShader) needs it specialized when
-            // generated instead (slangc.mjs -D OPENPBR_FEATURE_<NAME>=0, README "WebGPU").
+            // The render kernel too, with every toggle an `override`; a driver that compiles
+            // overrides unfolded (SwiftShader) builds kernels faster specialized when generated
+            // (slangc.mjs -D OPENPBR_FEATURE_<NAME>=0; README "WebGPU").
             const fs::path render_out = directory / "render.slang.wgsl";
             std::vector<std::string> render = slang_command(options, target);
             render.insert(render.end(), {"-entry", "render_main", "-stage", "compute", "-I", slang_dir.string(), "-o",

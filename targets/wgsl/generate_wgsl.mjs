@@ -11,7 +11,7 @@
 // -D defines go to Slang as text before the module (targets/slangc.mjs): a feature toggle
 // defined here is folded when the library is generated (e.g. -D OPENPBR_FEATURE_COAT=0; the
 // names are in slang/openpbr_features.h), which drivers that do not fold WGSL `override`s
-// before compiling (SwiftShader) need for large kernels; toggles left undefined stay
+// before compiling (SwiftShader) compile faster (docs/performance.md); toggles left undefined stay
 // `override` constants, set through the pipeline's `constants` by their @id.
 //
 // Slang names every WGSL declaration with a numeric suffix (openpbr_eval_0, base_color_0). The
