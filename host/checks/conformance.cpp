@@ -751,16 +751,17 @@ ConformanceReport run_conformance(const std::vector<Material>& materials, const 
 
     const std::vector<std::string> known = all_conformance_paths();
     const std::vector<std::string> wanted = options.paths.empty() ? known : options.paths;
+    // "cpu" names the reference itself, which always runs: {"cpu"} runs no other path.
     for (const std::string& name : wanted)
     {
-        if (std::find(known.begin(), known.end(), name) == known.end())
+        if (name != "cpu" && std::find(known.begin(), known.end(), name) == known.end())
         {
             std::string list;
             for (const std::string& candidate : known)
             {
                 list += (list.empty() ? "" : ", ") + candidate;
             }
-            throw std::invalid_argument("unknown conformance path '" + name + "' (known: " + list + ")");
+            throw std::invalid_argument("unknown conformance path '" + name + "' (known: cpu, " + list + ")");
         }
     }
     ExecutionPathSettings settings;

@@ -28,8 +28,10 @@ struct ConformanceOptions
     std::size_t query_count = 100000;  // e.g. 100000 queries spread evenly over the materials
     std::uint64_t seed = 1;            // queries are a pure function of the seed
     std::string kernel_directory;      // compiled kernels (.spv), e.g. build/kernels
-    std::vector<std::string> paths;    // paths to run, e.g. {"slang-spirv", "cpu-fma"}; empty = all_conformance_paths()
-    bool validation = false;           // Vulkan validation layers (on in tests)
+    // Paths to run, e.g. {"slang-spirv", "cpu-fma"}; empty = all_conformance_paths(); {"cpu"} = the
+    // CPU build only. An unknown name is an error (std::invalid_argument) naming the known ones.
+    std::vector<std::string> paths;
+    bool validation = false;  // Vulkan validation layers (on in tests)
     // One pipeline per toggle set the materials need (host/scene/features.h) instead of the full
     // pipeline, e.g. true for `openpbr conformance --specialize`.
     bool specialize = false;

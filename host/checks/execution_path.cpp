@@ -234,6 +234,7 @@ PathRun external_run(const ExternalPathResult& external, double wall_seconds)
     run.results = external.results;
     run.device = external.note;
     run.wall_seconds = wall_seconds;
+    run.device_ns_per_operation = external.device_ns_per_query;
     const auto all = external.device_ns_per_query.find("all");
     if (all != external.device_ns_per_query.end() && all->second > 0.0)
     {

@@ -14,6 +14,7 @@
 #pragma once
 
 #include <cstddef>
+#include <map>
 #include <memory>
 #include <optional>
 #include <stdexcept>
@@ -61,6 +62,9 @@ struct PathRun
     double first_dispatch_ms = 0.0;
     double dispatch_ms = 0.0;
     std::optional<double> device_ns_per_query;
+    // Kernel time per operation where the path measures each on its own (the CUDA program:
+    // "all", "eval", "sample", "pdf"), ns per query.
+    std::map<std::string, double> device_ns_per_operation;
     std::size_t pipeline_count = 0;  // pipelines built for the batch (0 on the CPU)
     std::vector<std::string> validation_messages;
 };

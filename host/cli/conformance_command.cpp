@@ -48,7 +48,7 @@ CLI::App* add_conformance_subcommand(CLI::App& parent, const CommandContext& con
         ->check(CLI::Range(std::size_t(1), std::size_t(100000000)));
     command->add_option("--seed", settings->options.seed, "random seed")->capture_default_str();
     command->add_option("--json", settings->json_path, "write the report as JSON");
-    command->add_option("--paths", settings->options.paths, "GPU paths to run (default: all)");
+    command->add_option("--paths", settings->options.paths, "paths to run (default: all; cpu = the CPU build only)");
     command->add_option("--materials", settings->material_files, "material files (default: the materials directory)");
     command->add_option("--dump-cpu", settings->options.cpu_dump_path,
                         "write the CPU results as raw float32, e.g. cpu.f32 (bit-for-bit comparisons)");

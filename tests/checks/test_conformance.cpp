@@ -52,9 +52,11 @@ std::string joined(const std::vector<std::string>& lines)
 
 TEST(Conformance, CpuOutputsAreFinite)
 {
-    // "cpu-only" names no path, so no other path runs.
-    EXPECT_EQ(run_paths({"cpu-only"}).cpu_nonfinite, 0u);
+    // "cpu" names the CPU build itself, so no other path runs.
+    EXPECT_EQ(run_paths({"cpu"}).cpu_nonfinite, 0u);
 }
+
+TEST(Conformance, UnknownPathIsAnError) { EXPECT_THROW(run_paths({"cpu-only"}, 64), std::invalid_argument); }
 
 class ConformancePath : public ::testing::TestWithParam<std::string>
 {
