@@ -9,7 +9,6 @@
 #include "host/checks/conformance_cpu_variants.h"
 #include "host/gpu/cuda_conformance.h"
 #include "host/gpu/vulkan_runner.h"
-#include "host/scene/material_packing.h"
 #include "host/support/stopwatch.h"
 
 // Set by the build (targets/CMakeLists.txt): the repository root (targets/wgsl/) and node.
@@ -43,8 +42,8 @@ const std::vector<VulkanPathKernel>& vulkan_kernels()
 
 const char* const cuda_path_names[] = {"cuda", "slang-cuda"};
 
-// The WebGPU paths: a WGSL kernel under the kernel directory (targets/CMakeLists.txt builds both)
-// and its entry point, dispatched by targets/wgsl/dispatch_conformance.mjs.
+// The WebGPU paths: a WGSL kernel under the kernel directory (built by CMakeLists.txt, "Slang
+// kernels") and its entry point, dispatched by targets/wgsl/dispatch_conformance.mjs.
 struct WgslPathKernel
 {
     const char* name;
@@ -228,7 +227,9 @@ PathRun external_run(const ExternalPathResult& external, double wall_seconds)
 {
     if (!external.executed)
     {
-        throw PathUnavailable(external.note);
+        // The reason without the program's own "skipped: ", which callers add where they say it.
+        const std::string skipped = "skipped: ";
+        throw PathUnavailable(external.note.rfind(skipped, 0) == 0 ? external.note.substr(skipped.size()) : external.note);
     }
     PathRun run;
     run.results = external.results;
