@@ -8,6 +8,8 @@
 #                                      (*_values.inc) for the headers' array mode
 #   include/openpbr/interop/...        the interop macro layer the headers include
 #   include/openpbr/hlsl/openpbr.hlsl  the HLSL library (host build only: generated with node)
+#   include/openpbr/wgsl/openpbr.wgsl  the WGSL library for WebGPU (host build only: generated
+#                                      with node, targets/wgsl/generate_wgsl.mjs)
 #   include/openpbr/host/gpu/vulkan_runner.h, lib/libopenpbr_vulkan_runner.a
 #                                      the Vulkan compute runner (host build only)
 #   lib/cmake/openpbr/                 openpbrConfig.cmake, its version file, the exported targets
@@ -44,6 +46,9 @@ if(TARGET openpbr_vulkan_runner)
 endif()
 if(OPENPBR_HLSL_LIBRARY_FILE)
   install(FILES ${OPENPBR_HLSL_LIBRARY_FILE} DESTINATION ${OPENPBR_INSTALL_INCLUDEDIR}/hlsl)
+endif()
+if(OPENPBR_WGSL_LIBRARY_FILE)
+  install(FILES ${OPENPBR_WGSL_LIBRARY_FILE} DESTINATION ${OPENPBR_INSTALL_INCLUDEDIR}/wgsl)
 endif()
 
 # glm::glm is part of openpbr::openpbr's interface only when this build found GLM; the package

@@ -1,9 +1,11 @@
 #!/usr/bin/env bash
 # The package as an outside project sees it (README "Integrating"): installs the build to a
-# temporary prefix, then configures, builds and runs the three consumers of examples/ against
+# temporary prefix, then configures, builds and runs the four consumers of examples/ against
 # that prefix only: cpp_consumer (find_package + BSDF checks), slang_consumer (`import openpbr;`
 # from the installed module, run on Vulkan) and hlsl_consumer (the installed openpbr.hlsl
-# through glslang's HLSL front end, run on Vulkan); the GPU two compare with the C++ build.
+# through glslang's HLSL front end, run on Vulkan); the GPU two compare with the C++ build; and
+# wgsl_consumer (the installed openpbr.wgsl under a WGSL kernel, run on WebGPU through Dawn for
+# Node, SwiftShader where there is no GPU: sample weights against eval / pdf, a white furnace).
 # Fails on any error. Environment: OPENPBR_BUILD_DIR (default build, already built),
 # OPENPBR_CONSUMER_DIR (default: a temporary directory, removed afterwards).
 set -euo pipefail
@@ -46,10 +48,10 @@ consumer() {
   echo "ci_consumers: $name took $(($(date +%s) - consumer_start)) s"
 }
 
-# The three consumers run at the same time: each is mostly one process at a time (configure, a
+# The consumers run at the same time: each is mostly one process at a time (configure, a
 # small build, one run), so one after another they left a core idle (81 s in all in the
 # clean-clone run of 5fafbe5, docs/ci-time.md). Each one's output is printed whole, in order.
-names=(cpp_consumer slang_consumer hlsl_consumer)
+names=(cpp_consumer slang_consumer hlsl_consumer wgsl_consumer)
 pids=()
 consumer cpp_consumer >"$work_dir/cpp_consumer.out" 2>&1 &
 pids+=($!)
@@ -59,6 +61,9 @@ consumer slang_consumer -DOPENPBR_SLANGC="${OPENPBR_SLANGC:-}" -DOPENPBR_SLANGC_
   >"$work_dir/slang_consumer.out" 2>&1 &
 pids+=($!)
 consumer hlsl_consumer >"$work_dir/hlsl_consumer.out" 2>&1 &
+pids+=($!)
+# Dawn for Node comes from the source tree's node_modules (scripts/setup.sh's npm ci).
+consumer wgsl_consumer -DOPENPBR_NODE_MODULES="$repo_root/node_modules" >"$work_dir/wgsl_consumer.out" 2>&1 &
 pids+=($!)
 failed=()
 for index in "${!names[@]}"; do

@@ -25,7 +25,11 @@ packages=(
   glslang-tools spirv-tools libpugixml-dev libcli11-dev nlohmann-json3-dev libstb-dev
   libtbb-dev libgtest-dev libgmock-dev libbenchmark-dev python3 python3-matplotlib
   libclang-rt-14-dev clang-format ccache
+  chromium
 )
+# chromium: its SwiftShader Vulkan driver (/usr/lib/chromium/vk_swiftshader_icd.json) is the
+# WebGPU adapter of the conformance paths slang-wgsl and wgsl-library where there is no GPU
+# (Dawn refuses lavapipe); the browser itself runs the viewer's test.
 missing=()
 for package in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$package" 2>/dev/null | grep -q "install ok installed" || missing+=("$package")

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 #include <limits>
 #include <map>
 #include <random>
@@ -13,7 +14,7 @@
 #include <tbb/parallel_for.h>
 
 #include "host/checks/conformance_cpu_variants.h"
-#include "host/gpu/cuda_conformance.h"
+#include "host/checks/execution_path.h"
 #include "host/scene/features.h"
 #include "host/gpu/shipped_tables.h"
 #include "host/gpu/vulkan_runner.h"
@@ -35,6 +36,9 @@ float* results = nullptr;
 #include "targets/kernels/openpbr_conformance_kernel.h"
 
 namespace openpbr::host {
+
+static_assert(conformance_query_floats == OPENPBR_QUERY_FLOATS && conformance_result_floats == OPENPBR_RESULT_FLOATS,
+              "conformance.h's record sizes are the kernel's");
 
 #if !OPENPBR_CONFORMANCE_CPU_FMA_BUILT
 std::vector<float> run_conformance_cpu_fma(const std::vector<float>&, const std::vector<float>&)
@@ -82,46 +86,10 @@ struct GpuBatchResult
     DispatchTiming timing;
 };
 
-struct GpuPath
-{
-    std::string name;
-    std::string kernel_file;  // under the kernel directory
-    std::string entry_point;
-    // Texture tables (OPENPBR_USE_TEXTURE_LUTS): the tables are sampled images at bindings
-    // 6-14 (slang/openpbr_lut_textures.h), not the buffers at 0 and 1.
-    bool texture_tables = false;
-};
-
-const std::vector<GpuPath>& gpu_paths()
-{
-    static const std::vector<GpuPath> paths = {
-        {"slang-spirv", "conformance.slang.spv", "main"},
-        {"glsl-spirv", "conformance.glsl.spv", "main"},
-        {"slang-hlsl", "conformance.slang-hlsl.spv", "main"},
-        {"slang-glsl", "conformance.slang-glsl.spv", "main"},
-        {"hlsl", "conformance.hlsl.spv", "main"},
-        {"glsl-spirv-texture", "conformance_texture.glsl.spv", "main", true},
-        {"slang-spirv-texture", "conformance_texture.slang.spv", "main", true},
-        {"hlsl-texture", "conformance_texture.hlsl.spv", "main", true},
-    };
-    return paths;
-}
-
-const GpuPath& find_gpu_path(const std::string& path_name)
-{
-    for (const GpuPath& path : gpu_paths())
-    {
-        if (path.name == path_name)
-        {
-            return path;
-        }
-    }
-    throw std::invalid_argument("unknown GPU path '" + path_name + "'");
-}
-
 // Bindings shared by every conformance kernel: 0 tables, 1 fuzz table, 2 queries,
 // 3 materials, 4 parameters, 5 results.
-ComputePipelineDescription conformance_pipeline_description(const GpuPath& path, const std::string& kernel_directory)
+ComputePipelineDescription conformance_pipeline_description(const VulkanPathKernel& path,
+                                                            const std::string& kernel_directory)
 {
     ComputePipelineDescription description;
     description.spirv_words = load_spirv_file(kernel_directory + "/" + path.kernel_file);
@@ -228,7 +196,7 @@ GpuBatchResult dispatch_conformance(ComputePipeline& pipeline, const std::vector
 ComputePipelineDescription conformance_pipeline_description(const std::string& path_name,
                                                             const std::string& kernel_directory)
 {
-    return conformance_pipeline_description(find_gpu_path(path_name), kernel_directory);
+    return conformance_pipeline_description(vulkan_path_kernel(path_name), kernel_directory);
 }
 
 ConformanceDispatch dispatch_conformance_pipeline(ComputePipeline& pipeline, const std::vector<float>& queries,
@@ -239,15 +207,33 @@ ConformanceDispatch dispatch_conformance_pipeline(ComputePipeline& pipeline, con
     return {std::move(batch.results), batch.timing};
 }
 
-namespace {
-
-GpuBatchResult execute_gpu_path(const GpuPath& path, VulkanContext& context, const std::vector<float>& queries,
-                                const std::vector<float>& materials, const std::string& kernel_directory)
+ConformanceDispatch run_conformance_vulkan(const std::string& path_name, VulkanContext& context,
+                                           const std::vector<float>& queries, const std::vector<float>& materials,
+                                           const std::string& kernel_directory)
 {
+    const VulkanPathKernel& path = vulkan_path_kernel(path_name);
     ComputePipeline pipeline(context, conformance_pipeline_description(path, kernel_directory));
     ConformanceDispatchSettings settings;
     settings.texture_tables = path.texture_tables;
-    return dispatch_conformance(pipeline, queries, materials, 3, settings);
+    GpuBatchResult batch = dispatch_conformance(pipeline, queries, materials, 3, settings);
+    return {std::move(batch.results), batch.timing};
+}
+
+namespace {
+
+// The rate of a path's steady-state dispatch where it times one (Vulkan), else of its device
+// time (CUDA, WebGPU), else of its whole run (the CPU paths).
+double queries_per_second(const PathRun& run, std::size_t query_count)
+{
+    if (run.dispatch_ms > 0.0)
+    {
+        return double(query_count) / (run.dispatch_ms * 1e-3);
+    }
+    if (run.device_ns_per_query)
+    {
+        return 1e9 / *run.device_ns_per_query;
+    }
+    return run.pipeline_count == 0 && run.wall_seconds > 0.0 ? double(query_count) / run.wall_seconds : 0.0;
 }
 
 // The pooled metric: every compared slot's relative error (floor 1e-3) in one population.
@@ -395,7 +381,7 @@ void compare_with_cpu(ConformancePathResult& result, const std::vector<float>& q
         at_gpu_direction_nudged.push_back(
             run_conformance_cpu(nudge_directions(at_gpu_direction_queries, pattern), materials));
     }
-    const ConformanceTolerances& tolerances = conformance_tolerances();
+    const ConformanceTolerances& tolerances = conformance_tolerances(result.name);
 
     // Channels in report order: eval.diffuse rgb (0-2), eval.specular rgb (3-5), pdf (6),
     // emission rgb (7-9), sample.consistency.pdf (10), its weight.diffuse rgb (11-13) and
@@ -534,60 +520,13 @@ void compare_with_cpu(ConformancePathResult& result, const std::vector<float>& q
     result.lobe_mismatch_fraction = query_count ? double(mismatches) / double(query_count) : 0.0;
 }
 
-ConformancePathResult run_gpu_path(const GpuPath& path, VulkanContext& context, const std::vector<float>& queries,
-                                   const std::vector<Material>& material_list, const std::vector<float>& materials,
-                                   const std::vector<float>& cpu_results, const ConformanceOptions& options)
-{
-    ConformancePathResult result;
-    result.name = path.name;
-    const std::size_t query_count = queries.size() / OPENPBR_QUERY_FLOATS;
-    context.clear_validation_messages();
-    GpuBatchResult batch;
-    if (options.specialize)
-    {
-        // One pipeline per toggle set the materials need (host/scene/features.h); the first-dispatch
-        // time is that of every set together, the steady-state time the sum over the sets.
-        const SpecializedConformanceRun run = run_conformance_gpu_specialized(path.name, context, queries, material_list,
-                                                                              options.kernel_directory, std::nullopt, 3);
-        batch.results = run.results;
-        batch.timing.dispatch_ms = run.dispatch_ms;
-        for (const SpecializedPipelineTiming& pipeline : run.pipelines)
-        {
-            batch.timing.first_dispatch_ms += pipeline.first_dispatch_ms;
-        }
-        result.pipeline_count = run.pipeline_builds;
-    }
-    else
-    {
-        batch = execute_gpu_path(path, context, queries, materials, options.kernel_directory);
-        result.pipeline_count = 1;
-    }
-    const DispatchTiming& timing = batch.timing;
-    result.executed = true;
-    result.note = context.device_name();
-    result.first_dispatch_ms = timing.first_dispatch_ms;
-    result.queries_per_second = timing.dispatch_ms > 0.0 ? double(query_count) / (timing.dispatch_ms * 1e-3) : 0.0;
-    if (timing.device_dispatch_ms && query_count > 0)
-    {
-        result.device_ns_per_query = *timing.device_dispatch_ms * 1e6 / double(query_count);
-    }
-    const std::vector<std::string> messages = context.validation_messages();
-    result.validation_messages = messages.size();
-    if (!messages.empty())
-    {
-        result.note += "; validation: " + messages.front();
-    }
-    compare_with_cpu(result, queries, materials, batch.results, cpu_results);
-    return result;
-}
-
 }  // namespace
 
 std::vector<float> run_conformance_gpu(const std::string& path_name, VulkanContext& context,
                                        const std::vector<float>& queries, const std::vector<float>& materials,
                                        const std::string& kernel_directory)
 {
-    return execute_gpu_path(find_gpu_path(path_name), context, queries, materials, kernel_directory).results;
+    return run_conformance_vulkan(path_name, context, queries, materials, kernel_directory).results;
 }
 
 SpecializedConformanceRun run_conformance_gpu_specialized(const std::string& path_name, VulkanContext& context,
@@ -601,7 +540,7 @@ SpecializedConformanceRun run_conformance_gpu_specialized(const std::string& pat
     {
         check_pipeline_supports(materials, *pipeline_mask);
     }
-    const GpuPath& path = find_gpu_path(path_name);
+    const VulkanPathKernel& path = vulkan_path_kernel(path_name);
     SpecializedPipelineCache cache(context, conformance_pipeline_description(path, kernel_directory));
     const std::vector<float> packed = pack_materials(materials);
     const std::size_t query_count = queries.size() / OPENPBR_QUERY_FLOATS;
@@ -694,27 +633,9 @@ std::vector<float> nudge_directions(const std::vector<float>& queries, int patte
     return nudged;
 }
 
-std::vector<std::string> all_conformance_paths()
-{
-    std::vector<std::string> names = cpu_conformance_paths();
-    for (const std::string& name : known_conformance_paths())
-    {
-        names.push_back(name);
-    }
-    return names;
-}
+std::vector<std::string> all_conformance_paths() { return execution_path_names(true); }
 
-std::vector<std::string> known_conformance_paths()
-{
-    std::vector<std::string> names;
-    for (const GpuPath& path : gpu_paths())
-    {
-        names.push_back(path.name);
-    }
-    names.push_back("cuda");
-    names.push_back("slang-cuda");
-    return names;
-}
+std::vector<std::string> known_conformance_paths() { return execution_path_names(false); }
 
 std::vector<Material> conformance_materials(const std::vector<Material>& library)
 {
@@ -820,11 +741,40 @@ ConformanceReport run_conformance(const std::vector<Material>& materials, const 
     {
         write_float32_file(options.cpu_dump_path, cpu_results);
     }
+    // Each executed path's raw results under options.dump_directory (nothing when it is empty).
+    const auto dump = [&options](const std::string& name, const std::vector<float>& results) {
+        if (!options.dump_directory.empty())
+        {
+            std::filesystem::create_directories(options.dump_directory);
+            write_float32_file(std::filesystem::path(options.dump_directory) / (name + ".f32"), results);
+        }
+    };
+    dump("cpu", cpu_results);
 
-    std::vector<std::string> wanted = options.paths.empty() ? all_conformance_paths() : options.paths;
-    // CPU paths that round like a GPU, and the CPU itself with every random number moved by one
-    // ulp (how chaotic the sampled outputs are: docs/conformance.md).
-    for (const std::string& name : cpu_conformance_paths())
+    const std::vector<std::string> known = all_conformance_paths();
+    const std::vector<std::string> wanted = options.paths.empty() ? known : options.paths;
+    // "cpu" names the reference itself, which always runs: {"cpu"} runs no other path.
+    for (const std::string& name : wanted)
+    {
+        if (name != "cpu" && std::find(known.begin(), known.end(), name) == known.end())
+        {
+            std::string list;
+            for (const std::string& candidate : known)
+            {
+                list += (list.empty() ? "" : ", ") + candidate;
+            }
+            throw std::invalid_argument("unknown conformance path '" + name + "' (known: cpu, " + list + ")");
+        }
+    }
+    ExecutionPathSettings settings;
+    settings.kernel_directory = options.kernel_directory;
+    settings.validation = options.validation;
+    settings.specialize = options.specialize;
+    ExecutionPaths paths(settings);
+    const PathBatch batch{queries, packed, &materials};
+    // In report order; a path that cannot run here (no device, not built, a texture format the
+    // device lacks) is reported as not executed with the reason, and the others still run.
+    for (const std::string& name : known)
     {
         if (std::find(wanted.begin(), wanted.end(), name) == wanted.end())
         {
@@ -832,94 +782,36 @@ ConformanceReport run_conformance(const std::vector<Material>& materials, const 
         }
         ConformancePathResult result;
         result.name = name;
-        result.pipeline_count = 0;
-        const std::string reason = name == "cpu-ulp" ? std::string() : conformance_cpu_fma_unavailable_reason();
-        if (!reason.empty())
-        {
-            result.note = reason;
-            report.paths.push_back(result);
-            continue;
-        }
-        const Stopwatch stopwatch;
-        std::vector<float> results;
-        if (name == "cpu-ulp")
-        {
-            result.note = "CPU build, u moved by one ulp";
-            results = run_conformance_cpu(nudge_random_numbers(queries), packed);
-        }
-        else
-        {
-            result.note = name == "cpu-fma" ? "CPU, -mfma -ffp-contract=fast"
-                                            : "CPU, -mfma -ffp-contract=fast -freciprocal-math, fast sqrt/normalize";
-            results =
-                name == "cpu-fma" ? run_conformance_cpu_fma(queries, packed) : run_conformance_cpu_fast(queries, packed);
-        }
-        const double seconds = stopwatch.seconds();
-        result.queries_per_second = seconds > 0.0 ? double(queries.size() / OPENPBR_QUERY_FLOATS) / seconds : 0.0;
-        result.executed = true;
-        compare_with_cpu(result, queries, packed, results, cpu_results);
-        report.paths.push_back(result);
-    }
-    std::string context_error;
-    VulkanOptions vulkan_options;
-    vulkan_options.enable_validation = options.validation;
-    std::optional<VulkanContext> context = VulkanContext::create(vulkan_options, &context_error);
-    for (const GpuPath& path : gpu_paths())
-    {
-        if (std::find(wanted.begin(), wanted.end(), path.name) == wanted.end())
-        {
-            continue;
-        }
-        if (!context)
-        {
-            ConformancePathResult skipped;
-            skipped.name = path.name;
-            skipped.note = context_error;
-            report.paths.push_back(skipped);
-            continue;
-        }
-        // A path the device cannot run (e.g. a texture format it lacks) is reported as not
-        // executed with the reason; the other paths' results are kept.
         try
         {
-            report.paths.push_back(run_gpu_path(path, *context, queries, materials, packed, cpu_results, options));
+            ExecutionPath& path = paths.path(name);
+            result.note = path.unavailable_reason();
+            if (!result.note.empty())
+            {
+                report.paths.push_back(result);
+                continue;
+            }
+            const PathRun run = path.run(batch);
+            result.executed = true;
+            result.note = run.device;
+            result.pipeline_count = run.pipeline_count;
+            result.first_dispatch_ms = run.first_dispatch_ms;
+            result.device_ns_per_query = run.device_ns_per_query;
+            result.queries_per_second = queries_per_second(run, options.query_count);
+            result.validation_messages = run.validation_messages.size();
+            if (!run.validation_messages.empty())
+            {
+                result.note += "; validation: " + run.validation_messages.front();
+            }
+            dump(name, run.results);
+            compare_with_cpu(result, queries, packed, run.results, cpu_results);
         }
         catch (const std::exception& error)
         {
-            ConformancePathResult failed;
-            failed.name = path.name;
-            failed.note = error.what();
-            report.paths.push_back(failed);
+            result.executed = false;
+            result.note = error.what();
         }
-    }
-    // CUDA runs in its own program (built with nvcc); it says plainly when no device exists.
-    const bool wants_cuda = std::find(wanted.begin(), wanted.end(), "cuda") != wanted.end() ||
-                            std::find(wanted.begin(), wanted.end(), "slang-cuda") != wanted.end();
-    if (wants_cuda)
-    {
-        for (const ExternalPathResult& external :
-             run_cuda_conformance_program(default_cuda_conformance_program(), queries, packed))
-        {
-            if (std::find(wanted.begin(), wanted.end(), external.name) == wanted.end())
-            {
-                continue;
-            }
-            ConformancePathResult result;
-            result.name = external.name;
-            result.executed = external.executed;
-            result.note = external.note;
-            if (external.executed)
-            {
-                const auto all = external.device_ns_per_query.find("all");
-                if (all != external.device_ns_per_query.end() && all->second > 0.0)
-                {
-                    result.device_ns_per_query = all->second;
-                    result.queries_per_second = 1e9 / all->second;
-                }
-                compare_with_cpu(result, queries, packed, external.results, cpu_results);
-            }
-            report.paths.push_back(result);
-        }
+        report.paths.push_back(result);
     }
     return report;
 }
@@ -930,9 +822,23 @@ const ConformanceTolerances& conformance_tolerances()
     return tolerances;
 }
 
+const ConformanceTolerances& conformance_tolerances(const std::string& path_name)
+{
+    // The measurements behind each bound are in conformance.h (conformance_tolerances(path)).
+    static const ConformanceTolerances wgsl_math = [] {
+        ConformanceTolerances tolerances;
+        tolerances.relative_p999 = 5e-5;  // measured 1.5e-5: 3.4x
+        tolerances.relative_max = 1e-3;   // measured 2.8e-4: 3.6x
+        tolerances.angle_p999 = 1e-3;     // measured 3.2e-4 rad: 3.1x
+        tolerances.angle_max = 2e-2;      // measured 5.9e-3 rad: 3.4x
+        return tolerances;
+    }();
+    return execution_path_has_wgsl_math(path_name) ? wgsl_math : conformance_tolerances();
+}
+
 std::vector<std::string> conformance_violations(const ConformancePathResult& result)
 {
-    const ConformanceTolerances& tolerances = conformance_tolerances();
+    const ConformanceTolerances& tolerances = conformance_tolerances(result.name);
     std::vector<std::string> violations;
     auto check = [&](const std::string& what, double value, double bound) {
         if (!(value <= bound))
@@ -996,6 +902,11 @@ nlohmann::json to_json(const ConformanceReport& report)
                                       {"worst", channel.worst}};
         }
         entry["channels"] = channels;
+        const ConformanceTolerances& bounds = conformance_tolerances(path.name);
+        entry["bounds"] = {{"relative_p999", bounds.relative_p999},
+                           {"relative_max", bounds.relative_max},
+                           {"angle_p999_radians", bounds.angle_p999},
+                           {"angle_max_radians", bounds.angle_max}};
         const std::vector<std::string> violations = conformance_violations(path);
         entry["passes"] = path.executed && violations.empty();
         entry["violations"] = violations;

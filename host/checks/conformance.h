@@ -17,19 +17,31 @@
 
 namespace openpbr::host {
 
+// Record sizes of targets/kernels/openpbr_conformance_kernel.h (OPENPBR_QUERY_FLOATS and
+// OPENPBR_RESULT_FLOATS), for code that does not include the kernel body (conformance.cpp
+// checks that they agree).
+constexpr std::size_t conformance_query_floats = 11;
+constexpr std::size_t conformance_result_floats = 24;
+
 struct ConformanceOptions
 {
     std::size_t query_count = 100000;  // e.g. 100000 queries spread evenly over the materials
     std::uint64_t seed = 1;            // queries are a pure function of the seed
     std::string kernel_directory;      // compiled kernels (.spv), e.g. build/kernels
-    std::vector<std::string> paths;    // paths to run, e.g. {"slang-spirv", "cpu-fma"}; empty = all_conformance_paths()
-    bool validation = false;           // Vulkan validation layers (on in tests)
+    // Paths to run, e.g. {"slang-spirv", "cpu-fma"}; empty = all_conformance_paths(); {"cpu"} = the
+    // CPU build only. An unknown name is an error (std::invalid_argument) naming the known ones.
+    std::vector<std::string> paths;
+    bool validation = false;  // Vulkan validation layers (on in tests)
     // One pipeline per toggle set the materials need (host/scene/features.h) instead of the full
     // pipeline, e.g. true for `openpbr conformance --specialize`.
     bool specialize = false;
     // Raw CPU results (float32, OPENPBR_RESULT_FLOATS per query), e.g. "cpu.f32" to compare two
     // builds bit for bit; empty writes nothing.
     std::string cpu_dump_path;
+    // Raw results of every path that executes (DIR/<path>.f32, float32, OPENPBR_RESULT_FLOATS per
+    // query; the CPU build as DIR/cpu.f32), e.g. to check that a refactoring changed no output
+    // bit (cmp); empty writes nothing.
+    std::string dump_directory;
 };
 
 // One output channel of the per-kind metric (docs/conformance.md): a relative error with a
@@ -81,6 +93,18 @@ struct ConformanceTolerances
 };
 const ConformanceTolerances& conformance_tolerances();
 
+// The bounds a path is held to: conformance_tolerances(), except on the WebGPU paths
+// (execution_path_has_wgsl_math, host/checks/execution_path.h). WGSL specifies its math
+// builtins far below correct rounding (sin and cos to an absolute error of 2^-11 on [-pi, pi];
+// exp, exp2 to 3 + 2|x| ulp; pow through exp2 and log2), and SwiftShader uses that room: its
+// sin and cos are off by up to 1.9e-4 (measured over 65536 arguments in [-pi, pi]) where the
+// Vulkan paths here are within 1e-7. Measured on slang-wgsl over 2x10^5 queries (SwiftShader
+// 5.0.0): worst channel relative error p99.9 1.5e-5 and max 2.8e-4 (eval.diffuse at an eval of
+// 0.01), direction angle p99.9 3.2e-4 rad and max 5.9e-3 rad; the WebGPU bounds hold those with
+// a margin of 3.1x or more. At the tests' 2x10^4 queries: relative max 4.3e-5, angle p99.9
+// 2.6e-4 and max 1.1e-3 rad.
+const ConformanceTolerances& conformance_tolerances(const std::string& path_name);
+
 // Per GPU path, the comparison against the CPU build.
 struct ConformancePathResult
 {
@@ -118,7 +142,8 @@ struct ConformanceReport
 // past the last slot.
 const char* conformance_slot_name(int slot);
 
-// The GPU paths this build knows (Vulkan, then CUDA), in report order.
+// The GPU paths this build knows (Vulkan, CUDA, then WebGPU), in report order
+// (host/checks/execution_path.h).
 std::vector<std::string> known_conformance_paths();
 
 // Every conformance path: cpu_conformance_paths(), then known_conformance_paths().
@@ -177,6 +202,13 @@ struct ConformanceDispatch
     std::vector<float> results;
     DispatchTiming timing;
 };
+
+// One Vulkan path on a query batch with its full pipeline, three dispatches (the steady-state
+// time from the second on): results and timing. Throws when the path is unknown or its kernel
+// cannot be loaded.
+ConformanceDispatch run_conformance_vulkan(const std::string& path_name, VulkanContext& context,
+                                           const std::vector<float>& queries, const std::vector<float>& materials,
+                                           const std::string& kernel_directory);
 ConformanceDispatch dispatch_conformance_pipeline(ComputePipeline& pipeline, const std::vector<float>& queries,
                                                   const std::vector<float>& materials, int repeats,
                                                   const ConformanceDispatchSettings& settings);

@@ -20,11 +20,10 @@
 
 #include "fuzz/fuzz_input_layout.h"
 #include "host/checks/conformance.h"
-#include "host/gpu/cuda_conformance.h"
+#include "host/checks/execution_path.h"
 #include "host/scene/material_library.h"
 #include "host/support/directional_albedo.h"
 #include "host/scene/parameter_table.h"
-#include "host/gpu/vulkan_runner.h"
 #include "host/support/random.h"
 #include "host/support/files.h"
 #include "host/support/stopwatch.h"
@@ -485,13 +484,6 @@ using Executor = std::function<std::vector<float>(const std::vector<float>& quer
 // 1.3M queries: 124.8 MB of results, under lavapipe's 128 MiB storage-buffer range.
 constexpr std::size_t batch_queries = 1300000;
 
-// Thrown by an executor when its path cannot run here (e.g. no CUDA device): the path is
-// reported as not executed, with the message as its note.
-struct PathUnavailable : std::runtime_error
-{
-    using std::runtime_error::runtime_error;
-};
-
 StabilityPathResult run_path(const std::string& name, const Executor& execute, const std::vector<StabilityCase>& cases,
                              const std::vector<float>& materials, std::size_t samples_per_case, std::uint64_t seed)
 {
@@ -740,74 +732,40 @@ StabilityReport run_stability(const std::vector<StabilityCase>& cases, const Sta
         report.paths.push_back(std::move(cpu));
     }
 
-    std::optional<VulkanContext> context;
-    std::string context_error;
-    bool context_tried = false;
+    // Every GPU path through the one mechanism (host/checks/execution_path.h); one that cannot
+    // run here (no device, not built) is reported as skipped with the reason.
+    ExecutionPathSettings settings;
+    settings.kernel_directory = options.kernel_directory;
+    settings.validation = options.validation;
+    ExecutionPaths paths(settings);
     for (const std::string& name : known_gpu)
     {
         if (std::find(wanted.begin(), wanted.end(), name) == wanted.end())
         {
             continue;
         }
-        const bool cuda = name == "cuda" || name == "slang-cuda";
-        Executor execute;
-        if (cuda)
-        {
-            // CUDA runs in its own program (host/gpu/cuda_conformance.h); it reports when it cannot run.
-            execute = [&name](const std::vector<float>& queries, const std::vector<float>& packed) {
-                for (ExternalPathResult& external :
-                     run_cuda_conformance_program(default_cuda_conformance_program(), queries, packed))
-                {
-                    if (external.name == name)
-                    {
-                        if (!external.executed)
-                        {
-                            throw PathUnavailable(external.note);
-                        }
-                        return std::move(external.results);
-                    }
-                }
-                throw PathUnavailable("the CUDA conformance program did not report " + name);
-            };
-        }
-        else
-        {
-            if (!context_tried)
-            {
-                VulkanOptions vulkan_options;
-                vulkan_options.enable_validation = options.validation;
-                context = VulkanContext::create(vulkan_options, &context_error);
-                context_tried = true;
-            }
-            if (!context)
-            {
-                StabilityPathResult skipped;
-                skipped.name = name;
-                skipped.note = "skipped: no Vulkan device (" + context_error + ")";
-                report.paths.push_back(std::move(skipped));
-                continue;
-            }
-            context->clear_validation_messages();
-            VulkanContext& device = *context;
-            const std::string kernel_directory = options.kernel_directory;
-            execute = [&device, &name, kernel_directory](const std::vector<float>& queries,
-                                                         const std::vector<float>& packed) {
-                return run_conformance_gpu(name, device, queries, packed, kernel_directory);
-            };
-        }
+        ExecutionPath& path = paths.path(name);
+        std::string device;
+        std::size_t validation_messages = 0;
+        const Executor execute = [&path, &device, &validation_messages](const std::vector<float>& queries,
+                                                                        const std::vector<float>& packed) {
+            PathRun run = path.run(PathBatch{queries, packed});
+            device = run.device;
+            validation_messages += run.validation_messages.size();
+            return std::move(run.results);
+        };
         try
         {
-            StabilityPathResult path = run_path(name, execute, cases, materials, report.gpu_samples_per_case, options.seed);
-            if (cuda)
+            const std::string reason = path.unavailable_reason();
+            if (!reason.empty())
             {
-                path.note = "CUDA (openpbr_cuda_conformance)";
+                throw PathUnavailable(reason);
             }
-            else
-            {
-                path.note = context->device_name();
-                path.validation_messages = context->validation_messages().size();
-            }
-            report.paths.push_back(std::move(path));
+            StabilityPathResult result =
+                run_path(name, execute, cases, materials, report.gpu_samples_per_case, options.seed);
+            result.note = device;
+            result.validation_messages = validation_messages;
+            report.paths.push_back(std::move(result));
         }
         catch (const PathUnavailable& unavailable)
         {

@@ -12,10 +12,10 @@ CLI::App* add_compile_subcommand(CLI::App& parent, const CommandContext&)
 {
     auto options = std::make_shared<CompileTargetsOptions>(default_compile_targets_options());
     CLI::App* command =
-        parent.add_subcommand("compile", "emit the shaders of every target (SPIR-V, HLSL, Metal, CUDA, GLSL)");
-    command->add_option("--target", options->targets, "spirv, hlsl, metal, cuda, glsl or all")
+        parent.add_subcommand("compile", "emit the shaders of every target (SPIR-V, HLSL, Metal, CUDA, GLSL, WGSL)");
+    command->add_option("--target", options->targets, "spirv, hlsl, metal, cuda, glsl, wgsl or all")
         ->delimiter(',')
-        ->check(CLI::IsMember({"spirv", "hlsl", "metal", "cuda", "glsl", "all"}));
+        ->check(CLI::IsMember({"spirv", "hlsl", "metal", "cuda", "glsl", "wgsl", "all"}));
     command->add_option("-o,--output-dir", options->output_directory, "output directory")->required();
     command->callback([options]() {
         run_command([&]() {

@@ -1,5 +1,5 @@
 // `openpbr conformance`: every GPU path against the CPU build (host/checks/conformance.h); prints
-// the report, writes --json and --dump-cpu. Exit status 0 once the report is written (the
+// the report, writes --json, --dump-cpu and --dump-dir. Exit status 0 once the report is written (the
 // report says which paths pass), 1 on errors.
 #include <iostream>
 #include <string>
@@ -48,10 +48,12 @@ CLI::App* add_conformance_subcommand(CLI::App& parent, const CommandContext& con
         ->check(CLI::Range(std::size_t(1), std::size_t(100000000)));
     command->add_option("--seed", settings->options.seed, "random seed")->capture_default_str();
     command->add_option("--json", settings->json_path, "write the report as JSON");
-    command->add_option("--paths", settings->options.paths, "GPU paths to run (default: all)");
+    command->add_option("--paths", settings->options.paths, "paths to run (default: all; cpu = the CPU build only)");
     command->add_option("--materials", settings->material_files, "material files (default: the materials directory)");
     command->add_option("--dump-cpu", settings->options.cpu_dump_path,
                         "write the CPU results as raw float32, e.g. cpu.f32 (bit-for-bit comparisons)");
+    command->add_option("--dump-dir", settings->options.dump_directory,
+                        "write each executed path's raw results as DIR/<path>.f32 (and DIR/cpu.f32)");
     command->add_flag("--validation", settings->validation, "enable Vulkan validation layers");
     command->add_flag("--specialize", settings->options.specialize,
                       "one pipeline per feature-toggle set the materials need (default: the full pipeline)");

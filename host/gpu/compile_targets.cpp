@@ -41,7 +41,7 @@ struct TargetInfo
 };
 
 constexpr TargetInfo target_infos[] = {
-    {"spirv", "spv"}, {"hlsl", "hlsl"}, {"metal", "metal"}, {"cuda", "cu"}, {"glsl", "glsl"},
+    {"spirv", "spv"}, {"hlsl", "hlsl"}, {"metal", "metal"}, {"cuda", "cu"}, {"glsl", "glsl"}, {"wgsl", "wgsl"},
 };
 
 const char* extension_of(const std::string& target)
@@ -53,7 +53,7 @@ const char* extension_of(const std::string& target)
             return info.extension;
         }
     }
-    throw std::invalid_argument("unknown target '" + target + "'; known: spirv, hlsl, metal, cuda, glsl, all");
+    throw std::invalid_argument("unknown target '" + target + "'; known: spirv, hlsl, metal, cuda, glsl, wgsl, all");
 }
 
 std::string quote_command(const std::vector<std::string>& arguments)
@@ -196,6 +196,22 @@ std::vector<CompiledFile> compile_targets(const CompileTargetsOptions& options)
                                          example_out.string(), example.string()});
         files.push_back(record(target, "example shade_batch (Slang)", example_out, run_command(consumer)));
 
+        if (target == "wgsl")
+        {
+            // The render kernel too, with every toggle an `override`; a driver that compiles
+            // overrides unfolded (SwiftShader) builds kernels faster specialized when generated
+            // (slangc.mjs -D OPENPBR_FEATURE_<NAME>=0; README "WebGPU").
+            const fs::path render_out = directory / "render.slang.wgsl";
+            std::vector<std::string> render = slang_command(options, target);
+            render.insert(render.end(), {"-entry", "render_main", "-stage", "compute", "-I", slang_dir.string(), "-o",
+                                         render_out.string(), (source / "targets" / "kernels" / "render.slang").string()});
+            files.push_back(record(target, "render kernel (Slang)", render_out, run_command(render)));
+            const fs::path generator = source / "targets" / "wgsl" / "generate_wgsl.mjs";
+            const fs::path library_out = directory / "openpbr.wgsl";
+            files.push_back(record(
+                target, "WGSL library (Slang module, plain names)", library_out,
+                run_command({options.node, generator.string(), "-I", slang_dir.string(), "-o", library_out.string()})));
+        }
         if (target == "hlsl")
         {
             const fs::path generator = source / "targets" / "hlsl" / "generate_hlsl.mjs";

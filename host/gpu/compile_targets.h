@@ -9,6 +9,8 @@
 //   DIR/metal/conformance.slang.metal DIR/metal/shade_batch.metal
 //   DIR/cuda/conformance.slang.cu     DIR/cuda/shade_batch.cu
 //   DIR/glsl/conformance.slang.glsl   DIR/glsl/shade_batch.glsl
+//   DIR/wgsl/conformance.slang.wgsl   DIR/wgsl/shade_batch.wgsl   DIR/wgsl/render.slang.wgsl
+//   DIR/wgsl/openpbr.wgsl (the WGSL library, targets/wgsl/generate_wgsl.mjs)
 // The Slang compiler is node + targets/slangc.mjs (the Slang 2025.15 WebAssembly build), or a
 // native slangc (CMake cache variable OPENPBR_SLANGC). See targets/README.md.
 #pragma once

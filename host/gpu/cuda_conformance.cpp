@@ -1,4 +1,4 @@
-// CUDA conformance through openpbr_cuda_conformance: see cuda_conformance.h.
+// Conformance paths run by other programs (CUDA, WebGPU): see cuda_conformance.h.
 #include "host/gpu/cuda_conformance.h"
 
 #include <sys/wait.h>
@@ -52,10 +52,10 @@ std::string shell_quote(const std::string& text)
     return quoted + "'";
 }
 
-std::vector<ExternalPathResult> not_executed(const std::string& note)
+std::vector<ExternalPathResult> not_executed(const std::vector<std::string>& names, const std::string& note)
 {
     std::vector<ExternalPathResult> results;
-    for (const char* name : cuda_path_names)
+    for (const std::string& name : names)
     {
         ExternalPathResult result;
         result.name = name;
@@ -89,20 +89,34 @@ std::string default_cuda_conformance_program()
 std::vector<ExternalPathResult> run_cuda_conformance_program(const std::string& program, const std::vector<float>& queries,
                                                              const std::vector<float>& materials)
 {
+    const std::vector<std::string> names(std::begin(cuda_path_names), std::end(cuda_path_names));
     if (program.empty())
     {
-        return not_executed("not built: nvcc was not found when the build was configured");
+        return not_executed(names, "not built: nvcc was not found when the build was configured");
     }
     if (!fs::exists(program))
     {
-        return not_executed("not built: " + program + " does not exist (build target openpbr_cuda_programs)");
+        return not_executed(names, "not built: " + program + " does not exist (build target openpbr_cuda_programs)");
     }
+    return run_conformance_program({program}, names, queries, materials);
+}
+
+std::vector<ExternalPathResult> run_conformance_program(const std::vector<std::string>& command_line,
+                                                        const std::vector<std::string>& path_names,
+                                                        const std::vector<float>& queries,
+                                                        const std::vector<float>& materials)
+{
     std::random_device seed;
-    const fs::path directory = fs::temp_directory_path() / ("openpbr-cuda-" + std::to_string(seed()));
+    const fs::path directory = fs::temp_directory_path() / ("openpbr-paths-" + std::to_string(seed()));
     write_conformance_inputs(directory.string(), queries, materials);
 
     // The program prints one line per path ("<name>: executed on ..." or "<name>: skipped: ...").
-    const std::string command = shell_quote(program) + " " + shell_quote(directory.string()) + " 2>&1";
+    std::string command;
+    for (const std::string& argument : command_line)
+    {
+        command += shell_quote(argument) + " ";
+    }
+    command += shell_quote(directory.string()) + " 2>&1";
     std::string output;
     int status = -1;
     if (FILE* pipe = popen(command.c_str(), "r"))
@@ -116,7 +130,7 @@ std::vector<ExternalPathResult> run_cuda_conformance_program(const std::string& 
     }
     const int exit_code = status >= 0 && WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 
-    std::vector<ExternalPathResult> results = not_executed("");
+    std::vector<ExternalPathResult> results = not_executed(path_names, "");
     for (ExternalPathResult& result : results)
     {
         std::istringstream lines(output);

@@ -19,7 +19,7 @@ void write_conformance_inputs(const std::string& directory, const std::vector<fl
 
 struct ExternalPathResult
 {
-    std::string name;  // "cuda" or "slang-cuda"
+    std::string name;  // e.g. "cuda", "slang-cuda", "slang-wgsl"
     bool executed = false;
     std::string note;            // the program's line, e.g. "skipped: no CUDA device (...)"
     std::vector<float> results;  // when executed: OPENPBR_RESULT_FLOATS per query
@@ -38,5 +38,15 @@ std::string default_cuda_conformance_program();
 // executed = false and the reason in note; never throws for those.
 std::vector<ExternalPathResult> run_cuda_conformance_program(const std::string& program, const std::vector<float>& queries,
                                                              const std::vector<float>& materials);
+
+// The exchange itself, for any program that speaks it (the CUDA program; the WebGPU dispatcher
+// targets/wgsl/dispatch_conformance.mjs run by node): writes the inputs to a fresh temporary
+// directory, runs `command_line` with that directory appended as its last argument, and reads
+// DIR/<name>.results.f32 of each path that reports "<name>: executed ..." (its device time from
+// "= T ns/query"). One entry per name, in that order; never throws for a failing program.
+std::vector<ExternalPathResult> run_conformance_program(const std::vector<std::string>& command_line,
+                                                        const std::vector<std::string>& path_names,
+                                                        const std::vector<float>& queries,
+                                                        const std::vector<float>& materials);
 
 }  // namespace openpbr::host

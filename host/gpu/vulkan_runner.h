@@ -131,8 +131,8 @@ struct PipelineStatistic
     double value = 0.0;
 };
 
-struct ContextState;   // defined in vulkan_runner.cpp
-struct PipelineState;  // defined in vulkan_runner.cpp
+struct ContextState;   // defined in vulkan_runner_internal.h (not installed)
+struct PipelineState;  // defined in vulkan_runner_internal.h (not installed)
 
 class VulkanContext
 {

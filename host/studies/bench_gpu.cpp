@@ -8,7 +8,7 @@
 #include <sstream>
 
 #include "host/checks/conformance.h"
-#include "host/gpu/cuda_conformance.h"
+#include "host/checks/execution_path.h"
 #include "host/gpu/vulkan_runner.h"
 #include "host/scene/features.h"
 #include "host/scene/material_library.h"
@@ -196,6 +196,7 @@ nlohmann::json run_gpu_bench(const GpuBenchOptions& options)
         cache.emplace(*context, conformance_pipeline_description(options.path, options.kernel_directory));
     }
     report["cuda_device"] = options.cuda ? "none" : "not requested";
+    ExecutionPaths paths(ExecutionPathSettings{options.kernel_directory, false, false});
     report["classes"] = nlohmann::json::array();
     for (const auto& [variant, mask, members] : classes)
     {
@@ -213,25 +214,36 @@ nlohmann::json run_gpu_bench(const GpuBenchOptions& options)
         entry["materials"] = names;
         if (options.cuda)
         {
+            // The CUDA paths through the execution-path mechanism (one program run per class for
+            // both): their kernel times per operation, or why they did not run.
             const std::vector<float> queries = make_queries(options.queries, members.size(), 1);
-            for (const ExternalPathResult& external :
-                 run_cuda_conformance_program(default_cuda_conformance_program(), queries, pack_materials(members)))
+            const std::vector<float> packed = pack_materials(members);
+            for (const char* name : {"cuda", "slang-cuda"})
             {
-                if (!external.executed)
+                ExecutionPath& path = paths.path(name);
+                try
                 {
-                    report["cuda_device"] = "none: " + external.note;
-                    continue;
+                    const std::string reason = path.unavailable_reason();
+                    if (!reason.empty())
+                    {
+                        throw PathUnavailable(reason);
+                    }
+                    const PathRun run = path.run(PathBatch{queries, packed});
+                    const std::string& note = run.device;
+                    const std::size_t on = note.find("executed on ");
+                    const std::size_t colon = note.find(": ", on);
+                    if (on != std::string::npos && colon != std::string::npos)
+                    {
+                        report["cuda_device"] = note.substr(on + 12, colon - on - 12);
+                    }
+                    for (const auto& [operation, ns] : run.device_ns_per_operation)
+                    {
+                        entry["cuda"][name][operation] = rate(ns);
+                    }
                 }
-                const std::string& note = external.note;
-                const std::size_t on = note.find("executed on ");
-                const std::size_t colon = note.find(": ", on);
-                if (on != std::string::npos && colon != std::string::npos)
+                catch (const PathUnavailable& unavailable)
                 {
-                    report["cuda_device"] = note.substr(on + 12, colon - on - 12);
-                }
-                for (const auto& [operation, ns] : external.device_ns_per_query)
-                {
-                    entry["cuda"][external.name][operation] = rate(ns);
+                    report["cuda_device"] = std::string("none: ") + unavailable.what();
                 }
             }
         }

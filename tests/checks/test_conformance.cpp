@@ -3,7 +3,10 @@
 // angle, lobe agreement) on every path, CPU paths that round like a GPU included.
 #include <gtest/gtest.h>
 
+#include <filesystem>
+
 #include "host/checks/conformance.h"
+#include "host/checks/execution_path.h"
 #include "host/scene/material_library.h"
 
 namespace {
@@ -49,8 +52,8 @@ std::string joined(const std::vector<std::string>& lines)
 
 TEST(Conformance, CpuOutputsAreFinite)
 {
-    // "cpu-only" names no path, so no other path runs.
-    EXPECT_EQ(run_paths({"cpu-only"}).cpu_nonfinite, 0u);
+    // "cpu" names the CPU build itself, so no other path runs.
+    EXPECT_EQ(run_paths({"cpu"}).cpu_nonfinite, 0u);
 }
 
 // The printed summary (`openpbr conformance`, scripts/run.sh) gives each path's verdict and
@@ -86,6 +89,8 @@ TEST(Conformance, SummaryLeadsWithVerdictAndLabelsPooledFigureOld)
     EXPECT_NE(text.find("old metric (pooled, not the verdict): max rel err 0.00103309"), std::string::npos) << text;
 }
 
+TEST(Conformance, UnknownPathIsAnError) { EXPECT_THROW(run_paths({"cpu-only"}, 64), std::invalid_argument); }
+
 class ConformancePath : public ::testing::TestWithParam<std::string>
 {
 };
@@ -96,6 +101,11 @@ TEST_P(ConformancePath, MatchesCpuBuild)
     const ConformancePathResult& path = find_path(report, GetParam());
     if (!path.executed)
     {
+        // Where SwiftShader is installed (scripts/setup.sh, CI) a WebGPU path must run: a skip
+        // there would hide a broken dispatcher or kernel.
+        ASSERT_FALSE(openpbr::host::execution_path_has_wgsl_math(GetParam()) &&
+                     std::filesystem::exists(openpbr::host::swiftshader_vulkan_driver()))
+            << GetParam() << " not executed although SwiftShader is installed: " << path.note;
         GTEST_SKIP() << GetParam() << " not executed: " << path.note;
     }
     // Every channel of the per-kind metric got values: eval and pdf for each query, samples of

@@ -236,7 +236,7 @@ TEST(Targets, CompileRejectsUnknownTarget)
     options.output_directory = (std::filesystem::temp_directory_path() / "openpbr-compile-test").string();
     options.targets = {"dxil"};
     EXPECT_THROW(compile_targets(options), std::invalid_argument);
-    EXPECT_EQ(compile_target_names(), (std::vector<std::string>{"spirv", "hlsl", "metal", "cuda", "glsl"}));
+    EXPECT_EQ(compile_target_names(), (std::vector<std::string>{"spirv", "hlsl", "metal", "cuda", "glsl", "wgsl"}));
 }
 
 }  // namespace
