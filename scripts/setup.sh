@@ -9,13 +9,15 @@ repo_root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 build_dir=${OPENPBR_BUILD_DIR:-$repo_root/build}
 build_type=${OPENPBR_BUILD_TYPE:-RelWithDebInfo}
 
-# Debian packages the build and the tests use, e.g. libglm-dev for the C++ backend.
+# Debian packages the build and the tests use, e.g. libglm-dev for the C++ backend, chromium
+# (headless, with its SwiftShader WebGPU adapter) for the browser viewer's test.
 packages=(
   g++ clang cmake ninja-build git nodejs npm
   libglm-dev libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers vulkan-tools
   glslang-tools spirv-tools libpugixml-dev libcli11-dev nlohmann-json3-dev libstb-dev
   libtbb-dev libgtest-dev libgmock-dev libbenchmark-dev python3 python3-matplotlib
   libclang-rt-14-dev clang-format
+  chromium
 )
 missing=()
 for package in "${packages[@]}"; do
