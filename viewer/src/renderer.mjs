@@ -247,6 +247,7 @@ export class Renderer {
   }
 
   display(samples, exposure) {
+    if (!this.displayBindGroup) return; // no scene yet
     const device = this.device;
     const uniform = new ArrayBuffer(32);
     new Uint32Array(uniform, 0, 4).set([this.size, this.size, samples, this.recordFloats]);
