@@ -14,6 +14,7 @@ import path from 'node:path';
 import { fileURLToPath } from 'node:url';
 
 import { launchChromium, startServer, waitForSamples } from '../../viewer/headless.mjs';
+import { parseParameterTable } from '../../viewer/src/parameters.mjs';
 
 const repoRoot = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..', '..');
 const DATA = path.join(repoRoot, 'tests', 'viewer', 'data');
@@ -139,6 +140,22 @@ async function main() {
         check(!within(wrongResult), `base colour 5 % off fails the comparison: ${describe(wrongResult)}`);
       }
     }
+
+    // Every parameter of the table has a control, and editing one restarts the accumulation.
+    const table = parseParameterTable(fs.readFileSync(path.join(repoRoot, 'slang', 'openpbr_parameters.h'), 'utf8'));
+    const controls = await page.$$eval('[data-parameter]', (rows) => rows.map((row) => row.dataset.parameter));
+    const missing = table.parameters.map((p) => p.name).filter((name) => !controls.includes(name));
+    check(missing.length === 0 && table.parameters.length > 40,
+      `a control for each of the ${table.parameters.length} parameters${missing.length ? ` (missing: ${missing.join(', ')})` : ''}`);
+    const before = await page.evaluate(() => window.openpbrViewer.state());
+    await page.$eval('#param-specular_roughness', (input) => {
+      input.value = '0.5';
+      input.dispatchEvent(new Event('input'));
+    });
+    const after = await waitForSamples(page, 2, before.generation + 1);
+    // A new generation starts its sample count from 0 (main.mjs restart).
+    check(after.generation === before.generation + 1 && after.error === '' && after.samples >= 2,
+      `editing specular_roughness restarts the accumulation (generation ${before.generation} -> ${after.generation}, now ${after.samples} spp)`);
 
     const broken = await page.evaluate(() => window.openpbrViewer.loadMaterialText('<materialx><open_pbr_surface name="x"', 'broken.mtlx'));
     const errorShown = await page.$eval('#error', (box) => !box.hidden && box.textContent);
