@@ -456,7 +456,7 @@ OPENPBR_FUNC float openpbr_render_emitter_selection(uint candidates)
 // What one path of one pixel sample knows before it starts and never changes: the settings,
 // the scene values it reads, the cell's first object and the wavelengths. A pure function of
 // (pixel, sample), so a backend that runs a path one step per dispatch (the WebGPU viewer,
-// viewer/README.md) recomputes it at every step instead of storing it.
+// render_steps.slang) recomputes it at every step instead of storing it.
 struct OpenPBR_RenderPath
 {
     uint flags;
