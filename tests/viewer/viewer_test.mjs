@@ -141,6 +141,21 @@ async function main() {
       }
     }
 
+    // The page's MaterialX reader takes every bundled material, as the C++ loader does (the
+    // gallery of openpbr render loads them all), under the same names.
+    const materialsDir = path.join(repoRoot, 'materials');
+    const bundled = fs.readdirSync(materialsDir).filter((name) => name.endsWith('.mtlx'));
+    const refused = [];
+    for (const name of bundled) {
+      const parsed = await page.evaluate((t, n) => window.openpbrViewer.parse(t, n), fs.readFileSync(path.join(materialsDir, name), 'utf8'), name);
+      if (!Array.isArray(parsed) || parsed.length === 0) refused.push(`${name}: ${parsed}`);
+    }
+    check(bundled.length > 50 && refused.length === 0, `the page reads all ${bundled.length} bundled materials${refused.length ? `; refused: ${refused.join('; ')}` : ''}`);
+    const unknownInput = await page.evaluate(() => window.openpbrViewer.parse(
+      '<materialx colorspace="lin_rec709"><open_pbr_surface name="s"><input name="base_colour" type="color3" value="1, 1, 1"/></open_pbr_surface></materialx>', 'typo.mtlx'));
+    check(typeof unknownInput === 'string' && unknownInput.includes("input 'base_colour': unknown input name"),
+      `an unknown input is refused with the C++ loader's message (${unknownInput})`);
+
     // Every parameter of the table has a control, and editing one restarts the accumulation.
     const table = parseParameterTable(fs.readFileSync(path.join(repoRoot, 'slang', 'openpbr_parameters.h'), 'utf8'));
     const controls = await page.$$eval('[data-parameter]', (rows) => rows.map((row) => row.dataset.parameter));

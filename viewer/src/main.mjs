@@ -203,6 +203,14 @@ async function main() {
 window.openpbrViewer = {
   state: () => ({ ...stats, sampleTimes: undefined, error: errorText, name: state.name, settings }),
   loadMaterialText,
+  // Parses a .mtlx text without loading it: the material names, or the error message.
+  parse(source, file) {
+    try {
+      return parseMaterialX(source, file, state.table).map((material) => material.name);
+    } catch (error) {
+      return error.message;
+    }
+  },
   // Builds (or finds) the render kernel of a feature mask: { compileSeconds, buildSeconds }.
   async buildKernel(mask) {
     const { compileSeconds, buildSeconds } = await state.renderer.pipelinesFor(mask);
