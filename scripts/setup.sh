@@ -18,7 +18,8 @@ source "$repo_root/scripts/common.sh"
 step_times_init
 build_targets=("$@")
 
-# Debian packages the build and the tests use, e.g. libglm-dev for the C++ backend.
+# Debian packages the build and the tests use, e.g. libglm-dev for the C++ backend, chromium
+# (headless, with its SwiftShader WebGPU adapter) for the browser viewer's test.
 packages=(
   g++ clang cmake ninja-build git nodejs npm
   libglm-dev libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers vulkan-tools

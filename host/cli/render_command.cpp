@@ -38,6 +38,7 @@ struct RenderCommandOptions
     bool no_labels = false;
     bool quiet = false;
     std::string json;
+    std::string linear;  // the linear image as JSON (mean and variance of the mean per pixel)
     std::string output;
 };
 
@@ -130,6 +131,9 @@ CLI::App* add_render_subcommand(CLI::App& parent, const CommandContext& context)
     render->add_flag("--no-labels", options.no_labels, "no material names in the image");
     render->add_flag("--quiet", options.quiet, "no progress bar");
     render->add_option("--json", options.json, "write timings and checks as JSON");
+    render->add_option("--linear", options.linear,
+                       "write the linear image as JSON: width, height, spp and, per pixel and channel (rows from "
+                       "the top), the mean radiance and the variance of the mean (e.g. for the browser viewer's test)");
     render->add_option("-o,--output", options.output, "output PNG (default openpbr_gallery.png or openpbr_furnace.png)");
     render->callback([settings, context]() {
         run_command([&]() { return run_render_command(*settings, context.materials_directory, context.kernel_directory); });
@@ -260,6 +264,15 @@ int run_render_command(const RenderCommandOptions& options, const std::string& m
         if (options.furnace) furnace_check(image, to_string(backend));
         write_render_png(output, image, options.exposure, labels);
         std::printf("wrote %s\n", output.c_str());
+        if (!options.linear.empty())
+        {
+            write_json_file(options.linear, {{"width", image.width},
+                                             {"height", image.height},
+                                             {"spp", image.samples_per_pixel},
+                                             {"mean", image.mean},
+                                             {"variance_of_mean", image.variance_of_mean}});
+            std::printf("wrote %s\n", options.linear.c_str());
+        }
         if (!options.json.empty())
         {
             write_json_file(options.json, report);

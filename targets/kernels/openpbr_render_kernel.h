@@ -47,6 +47,12 @@
 // uniform in the channel's box: B 400-500 nm, G 500-600 nm, R 600-700 nm (the pixel average
 // integrates each channel over its box); others use the library's default wavelengths.
 //
+// Structure: a path is openpbr_render_path_setup (what it knows from its pixel and sample),
+// openpbr_render_path_begin, openpbr_render_path_step until it is done (at most step_limit
+// steps), then openpbr_render_path_end; openpbr_render_sample runs that loop, and a backend that
+// cannot compile the loop (SwiftShader, the WebGPU viewer: render_steps.slang) runs one step per
+// dispatch with the state in a buffer. Both give the same samples.
+//
 // Random numbers: a PCG hash (O'Neill 2014; the 32-bit RXS-M-XS output permutation) of
 // (seed, pixel, sample, bounce, dimension), so any sample of any pixel is reproducible alone.
 //
@@ -447,351 +453,442 @@ OPENPBR_FUNC float openpbr_render_emitter_selection(uint candidates)
     return count > 0u ? 1.0f / float(count) : 0.0f;
 }
 
-OPENPBR_FUNC OpenPBR_RenderSample openpbr_render_sample(uint pixel_x, uint pixel_y, uint sample_index)
+// What one path of one pixel sample knows before it starts and never changes: the settings,
+// the scene values it reads, the cell's first object and the wavelengths. A pure function of
+// (pixel, sample), so a backend that runs a path one step per dispatch (the WebGPU viewer,
+// render_steps.slang) recomputes it at every step instead of storing it.
+struct OpenPBR_RenderPath
 {
-    OpenPBR_RenderSample result;
-    result.radiance = vec3(0.0f);
-    result.hit_object = false;
-    result.nonfinite = false;
+    uint flags;
+    uint max_depth;
+    uint max_volume_events;
+    uint roulette_depth;
+    uint step_limit;  // events of every kind a path may take: max_depth + max_volume_events + 2
+    uint cell_index;
+    uint ground_material;
+    uint key;
+    uint object_count;
+    bool has_ground;
+    bool has_light;
+    bool sphere_emissive;
+    float radius;
+    float ground_y;
+    float epsilon;
+    vec3 light_center;
+    float light_radius;
+    vec3 light_radiance;
+    float nits_to_units;
+    float checker_size;
+    float checker_dark;
+    OpenPBR_ResolvedInputs sphere_inputs;
+    vec3 sphere_center;
+    float sphere_radius;
+    vec3 wavelengths;
+    vec3 ground_wavelengths;
+    vec3 camera_origin;
+    vec3 camera_direction;
+};
 
-    const uint width = OPENPBR_RENDER_PARAMETER(OPENPBR_RENDER_PARAMETER_WIDTH);
-    const uint cell_size = OPENPBR_RENDER_PARAMETER(OPENPBR_RENDER_PARAMETER_CELL_SIZE);
-    const uint columns = OPENPBR_RENDER_PARAMETER(OPENPBR_RENDER_PARAMETER_COLUMNS);
-    const uint flags = OPENPBR_RENDER_PARAMETER(OPENPBR_RENDER_PARAMETER_FLAGS);
-    const uint max_depth = OPENPBR_RENDER_PARAMETER(OPENPBR_RENDER_PARAMETER_MAX_DEPTH);
-    const uint max_volume_events = OPENPBR_RENDER_PARAMETER(OPENPBR_RENDER_PARAMETER_MAX_VOLUME_EVENTS);
-    const uint roulette_depth = OPENPBR_RENDER_PARAMETER(OPENPBR_RENDER_PARAMETER_RR_DEPTH);
-    const uint cell_index = (pixel_y / cell_size) * columns + pixel_x / cell_size;
-    const bool has_sphere = cell_index < OPENPBR_RENDER_PARAMETER(OPENPBR_RENDER_PARAMETER_CELL_COUNT);
-    const uint ground_material = OPENPBR_RENDER_PARAMETER(OPENPBR_RENDER_PARAMETER_GROUND_MATERIAL);
-    const bool has_ground = (flags & OPENPBR_RENDER_FLAG_GROUND) != 0u;
-    const bool has_light = (flags & OPENPBR_RENDER_FLAG_LIGHT) != 0u;
-
-    const uint key = openpbr_render_path_key(OPENPBR_RENDER_PARAMETER(OPENPBR_RENDER_PARAMETER_SEED),
-                                             pixel_y * width + pixel_x, sample_index);
-
-    const float radius = OPENPBR_RENDER_SCENE(OPENPBR_RENDER_SCENE_SPHERE_RADIUS);
-    const float ground_y = -radius;
-    const float epsilon = 2e-4f * max(radius, 1e-3f);
-    const vec3 light_center = openpbr_render_scene_vec3(OPENPBR_RENDER_SCENE_LIGHT_CENTER);
-    const float light_radius = OPENPBR_RENDER_SCENE(OPENPBR_RENDER_SCENE_LIGHT_RADIUS);
-    const vec3 light_radiance = openpbr_render_scene_vec3(OPENPBR_RENDER_SCENE_LIGHT_RADIANCE);
-    const float nits_to_units = OPENPBR_RENDER_SCENE(OPENPBR_RENDER_SCENE_NITS_TO_UNITS);
-    const float checker_size = OPENPBR_RENDER_SCENE(OPENPBR_RENDER_SCENE_CHECKER_SIZE);
-    const float checker_dark = OPENPBR_RENDER_SCENE(OPENPBR_RENDER_SCENE_CHECKER_DARK);
-
-    // Camera ray through a jittered point of the pixel, in the cell's [-1, 1]^2 image plane.
-    const float local_x = float(pixel_x % cell_size) + openpbr_render_random(key, 0u, OPENPBR_RENDER_DIMENSION_CAMERA);
-    const float local_y = float(pixel_y % cell_size) + openpbr_render_random(key, 0u, OPENPBR_RENDER_DIMENSION_CAMERA + 1u);
-    const float ndc_x = 2.0f * local_x / float(cell_size) - 1.0f;
-    const float ndc_y = 1.0f - 2.0f * local_y / float(cell_size);
-    vec3 origin = openpbr_render_scene_vec3(OPENPBR_RENDER_SCENE_CAMERA_POSITION);
-    vec3 direction = normalize(openpbr_render_scene_vec3(OPENPBR_RENDER_SCENE_CAMERA_FORWARD) +
-                               openpbr_render_scene_vec3(OPENPBR_RENDER_SCENE_CAMERA_RIGHT) * ndc_x +
-                               openpbr_render_scene_vec3(OPENPBR_RENDER_SCENE_CAMERA_UP) * ndc_y);
-
-    // The cell's first object is the emitter next-event estimation can aim at.
-    const uint object_count = has_sphere ? openpbr_render_object_count(cell_index) : 0u;
-    OpenPBR_ResolvedInputs sphere_inputs = openpbr_make_default_resolved_inputs();
-    vec3 sphere_center = vec3(0.0f);
-    float sphere_radius = radius;
-    bool dispersive = false;
-    if (object_count > 0u)
-    {
-        sphere_inputs = openpbr_render_unpack_material(
-            uint(openpbr_render_object_float(cell_index, 0u, OPENPBR_RENDER_OBJECT_MATERIAL)));
-        sphere_center = openpbr_render_object_center(cell_index, 0u);
-        sphere_radius = openpbr_render_object_float(cell_index, 0u, OPENPBR_RENDER_OBJECT_RADIUS);
-        for (uint slot = 0u; slot < object_count; ++slot)
-        {
-            dispersive =
-                dispersive || openpbr_render_object_float(cell_index, slot, OPENPBR_RENDER_OBJECT_DISPERSIVE) != 0.0f;
-        }
-    }
-    const bool sphere_emissive =
-        object_count > 0u && sphere_inputs.emission_luminance > 0.0f && openpbr_max3(sphere_inputs.emission_color) > 0.0f;
-
-    // Wavelengths: one per channel, uniform in the channel's box, when an object of the cell is
-    // dispersive; otherwise the library's default (the host writes OPENPBR_DEFAULT_RGB_WAVELENGTHS_NM).
-    vec3 wavelengths = openpbr_render_scene_vec3(OPENPBR_RENDER_SCENE_DEFAULT_WAVELENGTHS);
-    if (dispersive)
-    {
-        wavelengths = vec3(600.0f + 100.0f * openpbr_render_random(key, 0u, OPENPBR_RENDER_DIMENSION_CAMERA + 2u),
-                           500.0f + 100.0f * openpbr_render_random(key, 0u, OPENPBR_RENDER_DIMENSION_CAMERA + 3u),
-                           400.0f + 100.0f * openpbr_render_random(key, 0u, OPENPBR_RENDER_DIMENSION_CAMERA + 4u));
-    }
-    const vec3 ground_wavelengths = openpbr_render_scene_vec3(OPENPBR_RENDER_SCENE_DEFAULT_WAVELENGTHS);
-
-    vec3 throughput = vec3(1.0f);
-    vec3 radiance = vec3(0.0f);
-    bool nonfinite = false;
-    // The medium stack: one bit per object of the cell the path is inside (see the top of this
-    // file); the medium the path is in is the highest set bit's.
-    uint inside_set = 0u;
-    OpenPBR_HomogeneousVolume medium = openpbr_make_empty_volume();
+// What a path carries from one step (a surface, a medium event, or the escape) to the next.
+// The medium it is in is not stored: it is always that of the top object of inside_set
+// (openpbr_render_path_step recomputes it).
+struct OpenPBR_RenderPathState
+{
+    vec3 throughput;
+    vec3 radiance;
+    vec3 origin;
+    vec3 direction;
     // MIS state of the previous vertex: the emitters its next-event estimation could choose
     // (0 after a delta lobe or a medium event), its BSDF pdf for the sampled direction, its
     // position.
-    uint previous_candidates = 0u;
-    float previous_pdf = 0.0f;
-    vec3 previous_position = origin;
-    uint surface_events = 0u;
-    uint volume_events = 0u;
-    const uint step_limit = max_depth + max_volume_events + 2u;
+    vec3 previous_position;
+    float previous_pdf;
+    uint previous_candidates;
+    // The medium stack: one bit per object of the cell the path is inside (see the top of this
+    // file); the medium the path is in is the highest set bit's.
+    uint inside_set;
+    uint surface_events;
+    uint volume_events;
+    uint step;
+    bool nonfinite;
+    bool hit_object;  // the camera ray hit the sphere (set at step 0)
+    bool done;
+};
 
-    for (uint step = 0u; step < step_limit; ++step)
+OPENPBR_FUNC OpenPBR_RenderPath openpbr_render_path_setup(uint pixel_x, uint pixel_y, uint sample_index)
+{
+    OpenPBR_RenderPath path;
+    const uint width = OPENPBR_RENDER_PARAMETER(OPENPBR_RENDER_PARAMETER_WIDTH);
+    const uint cell_size = OPENPBR_RENDER_PARAMETER(OPENPBR_RENDER_PARAMETER_CELL_SIZE);
+    const uint columns = OPENPBR_RENDER_PARAMETER(OPENPBR_RENDER_PARAMETER_COLUMNS);
+    path.flags = OPENPBR_RENDER_PARAMETER(OPENPBR_RENDER_PARAMETER_FLAGS);
+    path.max_depth = OPENPBR_RENDER_PARAMETER(OPENPBR_RENDER_PARAMETER_MAX_DEPTH);
+    path.max_volume_events = OPENPBR_RENDER_PARAMETER(OPENPBR_RENDER_PARAMETER_MAX_VOLUME_EVENTS);
+    path.roulette_depth = OPENPBR_RENDER_PARAMETER(OPENPBR_RENDER_PARAMETER_RR_DEPTH);
+    path.step_limit = path.max_depth + path.max_volume_events + 2u;
+    path.cell_index = (pixel_y / cell_size) * columns + pixel_x / cell_size;
+    const bool has_sphere = path.cell_index < OPENPBR_RENDER_PARAMETER(OPENPBR_RENDER_PARAMETER_CELL_COUNT);
+    path.ground_material = OPENPBR_RENDER_PARAMETER(OPENPBR_RENDER_PARAMETER_GROUND_MATERIAL);
+    path.has_ground = (path.flags & OPENPBR_RENDER_FLAG_GROUND) != 0u;
+    path.has_light = (path.flags & OPENPBR_RENDER_FLAG_LIGHT) != 0u;
+
+    path.key = openpbr_render_path_key(OPENPBR_RENDER_PARAMETER(OPENPBR_RENDER_PARAMETER_SEED), pixel_y * width + pixel_x,
+                                       sample_index);
+
+    path.radius = OPENPBR_RENDER_SCENE(OPENPBR_RENDER_SCENE_SPHERE_RADIUS);
+    path.ground_y = -path.radius;
+    path.epsilon = 2e-4f * max(path.radius, 1e-3f);
+    path.light_center = openpbr_render_scene_vec3(OPENPBR_RENDER_SCENE_LIGHT_CENTER);
+    path.light_radius = OPENPBR_RENDER_SCENE(OPENPBR_RENDER_SCENE_LIGHT_RADIUS);
+    path.light_radiance = openpbr_render_scene_vec3(OPENPBR_RENDER_SCENE_LIGHT_RADIANCE);
+    path.nits_to_units = OPENPBR_RENDER_SCENE(OPENPBR_RENDER_SCENE_NITS_TO_UNITS);
+    path.checker_size = OPENPBR_RENDER_SCENE(OPENPBR_RENDER_SCENE_CHECKER_SIZE);
+    path.checker_dark = OPENPBR_RENDER_SCENE(OPENPBR_RENDER_SCENE_CHECKER_DARK);
+
+    // Camera ray through a jittered point of the pixel, in the cell's [-1, 1]^2 image plane.
+    const float local_x = float(pixel_x % cell_size) + openpbr_render_random(path.key, 0u, OPENPBR_RENDER_DIMENSION_CAMERA);
+    const float local_y =
+        float(pixel_y % cell_size) + openpbr_render_random(path.key, 0u, OPENPBR_RENDER_DIMENSION_CAMERA + 1u);
+    const float ndc_x = 2.0f * local_x / float(cell_size) - 1.0f;
+    const float ndc_y = 1.0f - 2.0f * local_y / float(cell_size);
+    path.camera_origin = openpbr_render_scene_vec3(OPENPBR_RENDER_SCENE_CAMERA_POSITION);
+    path.camera_direction = normalize(openpbr_render_scene_vec3(OPENPBR_RENDER_SCENE_CAMERA_FORWARD) +
+                                      openpbr_render_scene_vec3(OPENPBR_RENDER_SCENE_CAMERA_RIGHT) * ndc_x +
+                                      openpbr_render_scene_vec3(OPENPBR_RENDER_SCENE_CAMERA_UP) * ndc_y);
+
+    // The cell's first object is the emitter next-event estimation can aim at.
+    path.object_count = has_sphere ? openpbr_render_object_count(path.cell_index) : 0u;
+    path.sphere_inputs = openpbr_make_default_resolved_inputs();
+    path.sphere_center = vec3(0.0f);
+    path.sphere_radius = path.radius;
+    bool dispersive = false;
+    if (path.object_count > 0u)
     {
-        // Closest hit among the objects, the ground and the light (the last two only from outside
-        // every object).
-        const bool in_medium = inside_set != 0u;
-        const OpenPBR_RenderObjectHit object_hit =
-            openpbr_render_intersect_objects(origin, direction, cell_index, object_count);
-        uint hit = OPENPBR_RENDER_HIT_NONE;
-        float t_hit = OPENPBR_RENDER_FLOAT_MAX;
-        if (object_hit.slot < OPENPBR_RENDER_MAX_OBJECTS)
+        path.sphere_inputs = openpbr_render_unpack_material(
+            uint(openpbr_render_object_float(path.cell_index, 0u, OPENPBR_RENDER_OBJECT_MATERIAL)));
+        path.sphere_center = openpbr_render_object_center(path.cell_index, 0u);
+        path.sphere_radius = openpbr_render_object_float(path.cell_index, 0u, OPENPBR_RENDER_OBJECT_RADIUS);
+        for (uint slot = 0u; slot < path.object_count; ++slot)
         {
-            hit = OPENPBR_RENDER_HIT_OBJECT;
-            t_hit = object_hit.t;
+            dispersive =
+                dispersive || openpbr_render_object_float(path.cell_index, slot, OPENPBR_RENDER_OBJECT_DISPERSIVE) != 0.0f;
         }
-        if (has_ground && !in_medium)
-        {
-            const float t = openpbr_render_intersect_ground(origin, direction, ground_y, 0.0f);
-            if (t > 0.0f && t < t_hit)
-            {
-                hit = OPENPBR_RENDER_HIT_GROUND;
-                t_hit = t;
-            }
-        }
-        if (has_light && !in_medium)
-        {
-            const float t = openpbr_render_intersect_sphere(origin, direction, light_center, light_radius, 0.0f);
-            if (t > 0.0f && t < t_hit)
-            {
-                hit = OPENPBR_RENDER_HIT_LIGHT;
-                t_hit = t;
-            }
-        }
-        if (step == 0u)
-        {
-            result.hit_object = hit == OPENPBR_RENDER_HIT_OBJECT;
-        }
-        if (in_medium && hit != OPENPBR_RENDER_HIT_OBJECT)
-        {
-            break;  // lost the interior to rounding: end the path (no light gained)
-        }
+    }
+    path.sphere_emissive = path.object_count > 0u && path.sphere_inputs.emission_luminance > 0.0f &&
+                           openpbr_max3(path.sphere_inputs.emission_color) > 0.0f;
 
-        // Interior medium: free flight to the next scattering event or to the surface.
-        if (in_medium && medium.is_present)
+    // Wavelengths: one per channel, uniform in the channel's box, when an object of the cell is
+    // dispersive; otherwise the library's default (the host writes OPENPBR_DEFAULT_RGB_WAVELENGTHS_NM).
+    path.wavelengths = openpbr_render_scene_vec3(OPENPBR_RENDER_SCENE_DEFAULT_WAVELENGTHS);
+    if (dispersive)
+    {
+        path.wavelengths = vec3(600.0f + 100.0f * openpbr_render_random(path.key, 0u, OPENPBR_RENDER_DIMENSION_CAMERA + 2u),
+                                500.0f + 100.0f * openpbr_render_random(path.key, 0u, OPENPBR_RENDER_DIMENSION_CAMERA + 3u),
+                                400.0f + 100.0f * openpbr_render_random(path.key, 0u, OPENPBR_RENDER_DIMENSION_CAMERA + 4u));
+    }
+    path.ground_wavelengths = openpbr_render_scene_vec3(OPENPBR_RENDER_SCENE_DEFAULT_WAVELENGTHS);
+    return path;
+}
+
+OPENPBR_FUNC OpenPBR_RenderPathState openpbr_render_path_begin(OPENPBR_IN(OpenPBR_RenderPath) path)
+{
+    OpenPBR_RenderPathState state;
+    state.throughput = vec3(1.0f);
+    state.radiance = vec3(0.0f);
+    state.origin = path.camera_origin;
+    state.direction = path.camera_direction;
+    state.previous_position = path.camera_origin;
+    state.previous_pdf = 0.0f;
+    state.previous_candidates = 0u;
+    state.inside_set = 0u;
+    state.surface_events = 0u;
+    state.volume_events = 0u;
+    state.step = 0u;
+    state.nonfinite = false;
+    state.hit_object = false;
+    state.done = false;
+    return state;
+}
+
+// One step of a path: the closest hit, then a medium event, the escape, the light, or a surface
+// (emission, next-event estimation, BSDF sampling, roulette). Sets state.done when the path
+// ends; the caller stops after path.step_limit steps at the latest.
+OPENPBR_FUNC void openpbr_render_path_step(OPENPBR_IN(OpenPBR_RenderPath) path, OPENPBR_INOUT(OpenPBR_RenderPathState) state)
+{
+    const uint step = state.step;
+    state.step = step + 1u;
+    const OpenPBR_HomogeneousVolume medium =
+        openpbr_render_medium_volume(path.cell_index, openpbr_render_top_object(state.inside_set));
+    // Closest hit among the objects, the ground and the light (the last two only from outside
+    // every object).
+    const bool in_medium = state.inside_set != 0u;
+    const OpenPBR_RenderObjectHit object_hit =
+        openpbr_render_intersect_objects(state.origin, state.direction, path.cell_index, path.object_count);
+    uint hit = OPENPBR_RENDER_HIT_NONE;
+    float t_hit = OPENPBR_RENDER_FLOAT_MAX;
+    if (object_hit.slot < OPENPBR_RENDER_MAX_OBJECTS)
+    {
+        hit = OPENPBR_RENDER_HIT_OBJECT;
+        t_hit = object_hit.t;
+    }
+    if (path.has_ground && !in_medium)
+    {
+        const float t = openpbr_render_intersect_ground(state.origin, state.direction, path.ground_y, 0.0f);
+        if (t > 0.0f && t < t_hit)
         {
-            const OpenPBR_VolumeDistanceSample flight = openpbr_volume_sample_distance(
-                medium, throughput, t_hit, openpbr_render_random(key, step, OPENPBR_RENDER_DIMENSION_VOLUME),
-                openpbr_render_random(key, step, OPENPBR_RENDER_DIMENSION_VOLUME + 1u));
-            throughput = throughput * flight.weight;
-            if (flight.scattered)
+            hit = OPENPBR_RENDER_HIT_GROUND;
+            t_hit = t;
+        }
+    }
+    if (path.has_light && !in_medium)
+    {
+        const float t =
+            openpbr_render_intersect_sphere(state.origin, state.direction, path.light_center, path.light_radius, 0.0f);
+        if (t > 0.0f && t < t_hit)
+        {
+            hit = OPENPBR_RENDER_HIT_LIGHT;
+            t_hit = t;
+        }
+    }
+    if (step == 0u)
+    {
+        state.hit_object = hit == OPENPBR_RENDER_HIT_OBJECT;
+    }
+    if (in_medium && hit != OPENPBR_RENDER_HIT_OBJECT)
+    {
+        state.done = true;
+        return;  // lost the interior to rounding: end the path (no light gained)
+    }
+
+    // Interior medium: free flight to the next scattering event or to the surface.
+    if (in_medium && medium.is_present)
+    {
+        const OpenPBR_VolumeDistanceSample flight = openpbr_volume_sample_distance(
+            medium, state.throughput, t_hit, openpbr_render_random(path.key, step, OPENPBR_RENDER_DIMENSION_VOLUME),
+            openpbr_render_random(path.key, step, OPENPBR_RENDER_DIMENSION_VOLUME + 1u));
+        state.throughput = state.throughput * flight.weight;
+        if (flight.scattered)
+        {
+            state.volume_events += 1u;
+            if (state.volume_events > path.max_volume_events)
             {
-                volume_events += 1u;
-                if (volume_events > max_volume_events)
+                state.done = true;
+                return;
+            }
+            state.origin = state.origin + state.direction * flight.distance;
+            const float cos_theta = openpbr_henyey_greenstein_sample_cos_theta(
+                medium.anisotropy, openpbr_render_random(path.key, step, OPENPBR_RENDER_DIMENSION_VOLUME + 2u));
+            const float sin_theta = sqrt(max(1.0f - cos_theta * cos_theta, 0.0f));
+            const float phi =
+                OPENPBR_RENDER_TWO_PI * openpbr_render_random(path.key, step, OPENPBR_RENDER_DIMENSION_VOLUME + 3u);
+            const OpenPBR_Basis frame = openpbr_make_basis(state.direction);
+            state.direction =
+                normalize(openpbr_to_world(frame, vec3(sin_theta * cos(phi), sin_theta * sin(phi), cos_theta)));
+            state.previous_candidates = 0u;
+            if (!openpbr_render_is_finite(state.throughput))
+            {
+                state.nonfinite = true;
+                state.done = true;
+                return;
+            }
+            if (state.volume_events >= path.roulette_depth)
+            {
+                const float survival = min(openpbr_max3(state.throughput), 1.0f);
+                if (!(openpbr_render_random(path.key, step, OPENPBR_RENDER_DIMENSION_ROULETTE) < survival))
                 {
-                    break;
+                    state.done = true;
+                    return;
                 }
-                origin = origin + direction * flight.distance;
-                const float cos_theta = openpbr_henyey_greenstein_sample_cos_theta(
-                    medium.anisotropy, openpbr_render_random(key, step, OPENPBR_RENDER_DIMENSION_VOLUME + 2u));
-                const float sin_theta = sqrt(max(1.0f - cos_theta * cos_theta, 0.0f));
-                const float phi =
-                    OPENPBR_RENDER_TWO_PI * openpbr_render_random(key, step, OPENPBR_RENDER_DIMENSION_VOLUME + 3u);
-                const OpenPBR_Basis frame = openpbr_make_basis(direction);
-                direction = normalize(openpbr_to_world(frame, vec3(sin_theta * cos(phi), sin_theta * sin(phi), cos_theta)));
-                previous_candidates = 0u;
-                if (!openpbr_render_is_finite(throughput))
-                {
-                    nonfinite = true;
-                    break;
-                }
-                if (volume_events >= roulette_depth)
-                {
-                    const float survival = min(openpbr_max3(throughput), 1.0f);
-                    if (!(openpbr_render_random(key, step, OPENPBR_RENDER_DIMENSION_ROULETTE) < survival))
-                    {
-                        break;
-                    }
-                    throughput = throughput / survival;
-                }
-                continue;
+                state.throughput = state.throughput / survival;
             }
-        }
-
-        if (hit == OPENPBR_RENDER_HIT_NONE)
-        {
-            radiance = radiance + throughput * openpbr_render_environment(direction, flags);
-            break;
-        }
-        const float previous_selection = openpbr_render_emitter_selection(previous_candidates);
-        if (hit == OPENPBR_RENDER_HIT_LIGHT)
-        {
-            const float weight =
-                (previous_candidates & OPENPBR_RENDER_EMITTER_LIGHT) != 0u
-                    ? openpbr_render_power_heuristic(
-                          previous_pdf,
-                          previous_selection * openpbr_render_cone_pdf(previous_position, light_center, light_radius))
-                    : 1.0f;
-            radiance = radiance + throughput * light_radiance * weight;
-            break;
-        }
-
-        // Surface interaction: geometric normal = shading normal.
-        const vec3 position = origin + direction * t_hit;
-        const bool on_object = hit == OPENPBR_RENDER_HIT_OBJECT;
-        const uint slot = object_hit.slot;
-        const vec3 normal =
-            on_object ? normalize(position - openpbr_render_object_center(cell_index, slot)) : vec3(0.0f, 1.0f, 0.0f);
-        const bool encloses =
-            on_object && openpbr_render_object_float(cell_index, slot, OPENPBR_RENDER_OBJECT_ENCLOSES) != 0.0f;
-        const uint slot_bit = on_object ? (1u << slot) : 0u;
-        // The medium outside this surface: the entered object of highest priority other than
-        // the one hit (the environment when there is none).
-        const uint outside_object = openpbr_render_top_object(inside_set & ~slot_bit);
-        if (on_object && outside_object < OPENPBR_RENDER_MAX_OBJECTS && outside_object > slot)
-        {
-            // A false hit: the surface lies inside a medium of higher priority, which continues
-            // on both sides. Straight on; only the membership of the object hit changes.
-            const float crossing = dot(direction, normal);
-            if (encloses)
-            {
-                inside_set = crossing < 0.0f ? (inside_set | slot_bit) : (inside_set & ~slot_bit);
-            }
-            origin = position + normal * (crossing >= 0.0f ? epsilon : -epsilon);
-            continue;
-        }
-        const float exterior_ior = on_object ? openpbr_render_medium_ior(cell_index, outside_object) : 1.0f;
-        OpenPBR_ResolvedInputs inputs = sphere_inputs;
-        if (!on_object)
-        {
-            inputs = openpbr_render_unpack_material(ground_material);
-            const float parity = fract(0.5f * (floor(position.x / checker_size) + floor(position.z / checker_size)));
-            inputs.base_color = inputs.base_color * (parity < 0.25f ? 1.0f : checker_dark);
-        }
-        else if (slot != 0u)
-        {
-            inputs = openpbr_render_unpack_material(
-                uint(openpbr_render_object_float(cell_index, slot, OPENPBR_RENDER_OBJECT_MATERIAL)));
-        }
-        inputs.geometry_basis = openpbr_make_basis(normal);
-        inputs.geometry_coat_basis = inputs.geometry_basis;
-        const vec3 view = -direction;
-        const OpenPBR_PreparedBsdf bsdf =
-            openpbr_prepare(inputs, view, on_object ? wavelengths : ground_wavelengths, exterior_ior);
-
-        if (on_object && slot == 0u && sphere_emissive)
-        {
-            const float weight =
-                (previous_candidates & OPENPBR_RENDER_EMITTER_SPHERE) != 0u
-                    ? openpbr_render_power_heuristic(
-                          previous_pdf,
-                          previous_selection * openpbr_render_cone_pdf(previous_position, sphere_center, sphere_radius))
-                    : 1.0f;
-            radiance = radiance + throughput * bsdf.emission * (nits_to_units * weight);
-        }
-        else if (on_object && slot != 0u)
-        {
-            // Inner objects are not next-event targets: their emission counts in full.
-            radiance = radiance + throughput * bsdf.emission * nits_to_units;
-        }
-
-        surface_events += 1u;
-        if (surface_events > max_depth)
-        {
-            break;
-        }
-
-        // Next-event estimation towards one emitter (also from the interface seen from inside:
-        // rough interfaces then transmit the light in; delta lobes give eval = 0). Every object
-        // of the cell occludes, except the emitting object when it is the target.
-        const uint candidates = (has_light ? OPENPBR_RENDER_EMITTER_LIGHT : 0u) |
-                                (!on_object && sphere_emissive ? OPENPBR_RENDER_EMITTER_SPHERE : 0u);
-        if (candidates != 0u)
-        {
-            const float selection = openpbr_render_emitter_selection(candidates);
-            const float u_emitter = openpbr_render_random(key, step, OPENPBR_RENDER_DIMENSION_EMITTER_U);
-            const bool pick_sphere =
-                candidates == OPENPBR_RENDER_EMITTER_SPHERE ||
-                (candidates == (OPENPBR_RENDER_EMITTER_LIGHT | OPENPBR_RENDER_EMITTER_SPHERE) && u_emitter < 0.5f);
-            const vec3 emitter_center = pick_sphere ? sphere_center : light_center;
-            const float emitter_radius = pick_sphere ? sphere_radius : light_radius;
-            const OpenPBR_RenderCone cone =
-                openpbr_render_sample_cone(position, emitter_center, emitter_radius,
-                                           vec2(openpbr_render_random(key, step, OPENPBR_RENDER_DIMENSION_LIGHT_U),
-                                                openpbr_render_random(key, step, OPENPBR_RENDER_DIMENSION_LIGHT_V)));
-            if (cone.valid)
-            {
-                const OpenPBR_DiffuseSpecular value = openpbr_eval(bsdf, cone.direction);
-                const vec3 f = value.diffuse + value.specular;
-                if (openpbr_max3(f) > 0.0f)
-                {
-                    vec3 emitted = light_radiance;
-                    if (pick_sphere)
-                    {
-                        OpenPBR_ResolvedInputs emitter_inputs = sphere_inputs;
-                        emitter_inputs.geometry_basis =
-                            openpbr_make_basis(normalize(position + cone.direction * cone.distance - sphere_center));
-                        emitter_inputs.geometry_coat_basis = emitter_inputs.geometry_basis;
-                        emitted = openpbr_prepare_emission(emitter_inputs, -cone.direction) * nits_to_units;
-                    }
-                    const float facing = dot(cone.direction, normal) >= 0.0f ? 1.0f : -1.0f;
-                    const vec3 shadow_origin = position + normal * (facing * epsilon);
-                    if (!openpbr_render_occluded(shadow_origin, cone.direction, cone.distance, cell_index,
-                                                 pick_sphere ? 0u : object_count, radius, flags))
-                    {
-                        const float light_pdf = selection * cone.pdf;
-                        const float weight = openpbr_render_power_heuristic(light_pdf, openpbr_pdf(bsdf, cone.direction));
-                        radiance = radiance + throughput * f * emitted * (weight / light_pdf);
-                    }
-                }
-            }
-        }
-
-        // Continue by sampling the BSDF.
-        const OpenPBR_BsdfSample bsdf_sample =
-            openpbr_sample(bsdf, vec3(openpbr_render_random(key, step, OPENPBR_RENDER_DIMENSION_BSDF),
-                                      openpbr_render_random(key, step, OPENPBR_RENDER_DIMENSION_BSDF + 1u),
-                                      openpbr_render_random(key, step, OPENPBR_RENDER_DIMENSION_BSDF + 2u)));
-        if (!(bsdf_sample.pdf > 0.0f))
-        {
-            break;
-        }
-        throughput = throughput * (bsdf_sample.weight.diffuse + bsdf_sample.weight.specular);
-        if (!openpbr_render_is_finite(throughput))
-        {
-            nonfinite = true;
-            break;
-        }
-        const bool delta = (bsdf_sample.lobe_type & OPENPBR_RENDER_LOBE_TYPE_SPECULAR) != 0u;
-        previous_candidates = delta ? 0u : candidates;
-        previous_pdf = bsdf_sample.pdf;
-        previous_position = position;
-        const float going = dot(bsdf_sample.direction, normal);
-        if (encloses)
-        {
-            // Below the outward normal of a sphere is its interior, whichever lobe took the
-            // path there (refraction, or the opacity pass-through of a cut-out surface).
-            inside_set = going < 0.0f ? (inside_set | slot_bit) : (inside_set & ~slot_bit);
-            medium = openpbr_render_medium_volume(cell_index, openpbr_render_top_object(inside_set));
-        }
-        origin = position + normal * (going >= 0.0f ? epsilon : -epsilon);
-        direction = bsdf_sample.direction;
-
-        if (surface_events >= roulette_depth)
-        {
-            const float survival = min(openpbr_max3(throughput), 1.0f);
-            if (!(openpbr_render_random(key, step, OPENPBR_RENDER_DIMENSION_ROULETTE) < survival))
-            {
-                break;
-            }
-            throughput = throughput / survival;
+            return;
         }
     }
 
-    if (nonfinite || !openpbr_render_is_finite(radiance) || radiance.x < 0.0f || radiance.y < 0.0f || radiance.z < 0.0f)
+    if (hit == OPENPBR_RENDER_HIT_NONE)
+    {
+        state.radiance = state.radiance + state.throughput * openpbr_render_environment(state.direction, path.flags);
+        state.done = true;
+        return;
+    }
+    const float previous_selection = openpbr_render_emitter_selection(state.previous_candidates);
+    if (hit == OPENPBR_RENDER_HIT_LIGHT)
+    {
+        const float weight =
+            (state.previous_candidates & OPENPBR_RENDER_EMITTER_LIGHT) != 0u
+                ? openpbr_render_power_heuristic(
+                      state.previous_pdf, previous_selection * openpbr_render_cone_pdf(state.previous_position,
+                                                                                       path.light_center, path.light_radius))
+                : 1.0f;
+        state.radiance = state.radiance + state.throughput * path.light_radiance * weight;
+        state.done = true;
+        return;
+    }
+
+    // Surface interaction: geometric normal = shading normal.
+    const vec3 position = state.origin + state.direction * t_hit;
+    const bool on_object = hit == OPENPBR_RENDER_HIT_OBJECT;
+    const uint slot = object_hit.slot;
+    const vec3 normal =
+        on_object ? normalize(position - openpbr_render_object_center(path.cell_index, slot)) : vec3(0.0f, 1.0f, 0.0f);
+    const bool encloses =
+        on_object && openpbr_render_object_float(path.cell_index, slot, OPENPBR_RENDER_OBJECT_ENCLOSES) != 0.0f;
+    const uint slot_bit = on_object ? (1u << slot) : 0u;
+    // The medium outside this surface: the entered object of highest priority other than
+    // the one hit (the environment when there is none).
+    const uint outside_object = openpbr_render_top_object(state.inside_set & ~slot_bit);
+    if (on_object && outside_object < OPENPBR_RENDER_MAX_OBJECTS && outside_object > slot)
+    {
+        // A false hit: the surface lies inside a medium of higher priority, which continues
+        // on both sides. Straight on; only the membership of the object hit changes.
+        const float crossing = dot(state.direction, normal);
+        if (encloses)
+        {
+            state.inside_set = crossing < 0.0f ? (state.inside_set | slot_bit) : (state.inside_set & ~slot_bit);
+        }
+        state.origin = position + normal * (crossing >= 0.0f ? path.epsilon : -path.epsilon);
+        return;
+    }
+    const float exterior_ior = on_object ? openpbr_render_medium_ior(path.cell_index, outside_object) : 1.0f;
+    OpenPBR_ResolvedInputs inputs = path.sphere_inputs;
+    if (!on_object)
+    {
+        inputs = openpbr_render_unpack_material(path.ground_material);
+        const float parity = fract(0.5f * (floor(position.x / path.checker_size) + floor(position.z / path.checker_size)));
+        inputs.base_color = inputs.base_color * (parity < 0.25f ? 1.0f : path.checker_dark);
+    }
+    else if (slot != 0u)
+    {
+        inputs = openpbr_render_unpack_material(
+            uint(openpbr_render_object_float(path.cell_index, slot, OPENPBR_RENDER_OBJECT_MATERIAL)));
+    }
+    inputs.geometry_basis = openpbr_make_basis(normal);
+    inputs.geometry_coat_basis = inputs.geometry_basis;
+    const vec3 view = -state.direction;
+    const OpenPBR_PreparedBsdf bsdf =
+        openpbr_prepare(inputs, view, on_object ? path.wavelengths : path.ground_wavelengths, exterior_ior);
+
+    if (on_object && slot == 0u && path.sphere_emissive)
+    {
+        const float weight = (state.previous_candidates & OPENPBR_RENDER_EMITTER_SPHERE) != 0u
+                                 ? openpbr_render_power_heuristic(
+                                       state.previous_pdf,
+                                       previous_selection * openpbr_render_cone_pdf(state.previous_position,
+                                                                                    path.sphere_center, path.sphere_radius))
+                                 : 1.0f;
+        state.radiance = state.radiance + state.throughput * bsdf.emission * (path.nits_to_units * weight);
+    }
+    else if (on_object && slot != 0u)
+    {
+        // Inner objects are not next-event targets: their emission counts in full.
+        state.radiance = state.radiance + state.throughput * bsdf.emission * path.nits_to_units;
+    }
+
+    state.surface_events += 1u;
+    if (state.surface_events > path.max_depth)
+    {
+        state.done = true;
+        return;
+    }
+
+    // Next-event estimation towards one emitter (also from the interface seen from inside:
+    // rough interfaces then transmit the light in; delta lobes give eval = 0). Every object
+    // of the cell occludes, except the emitting object when it is the target.
+    const uint candidates = (path.has_light ? OPENPBR_RENDER_EMITTER_LIGHT : 0u) |
+                            (!on_object && path.sphere_emissive ? OPENPBR_RENDER_EMITTER_SPHERE : 0u);
+    if (candidates != 0u)
+    {
+        const float selection = openpbr_render_emitter_selection(candidates);
+        const float u_emitter = openpbr_render_random(path.key, step, OPENPBR_RENDER_DIMENSION_EMITTER_U);
+        const bool pick_sphere =
+            candidates == OPENPBR_RENDER_EMITTER_SPHERE ||
+            (candidates == (OPENPBR_RENDER_EMITTER_LIGHT | OPENPBR_RENDER_EMITTER_SPHERE) && u_emitter < 0.5f);
+        const vec3 emitter_center = pick_sphere ? path.sphere_center : path.light_center;
+        const float emitter_radius = pick_sphere ? path.sphere_radius : path.light_radius;
+        const OpenPBR_RenderCone cone =
+            openpbr_render_sample_cone(position, emitter_center, emitter_radius,
+                                       vec2(openpbr_render_random(path.key, step, OPENPBR_RENDER_DIMENSION_LIGHT_U),
+                                            openpbr_render_random(path.key, step, OPENPBR_RENDER_DIMENSION_LIGHT_V)));
+        if (cone.valid)
+        {
+            const OpenPBR_DiffuseSpecular value = openpbr_eval(bsdf, cone.direction);
+            const vec3 f = value.diffuse + value.specular;
+            if (openpbr_max3(f) > 0.0f)
+            {
+                vec3 emitted = path.light_radiance;
+                if (pick_sphere)
+                {
+                    OpenPBR_ResolvedInputs emitter_inputs = path.sphere_inputs;
+                    emitter_inputs.geometry_basis =
+                        openpbr_make_basis(normalize(position + cone.direction * cone.distance - path.sphere_center));
+                    emitter_inputs.geometry_coat_basis = emitter_inputs.geometry_basis;
+                    emitted = openpbr_prepare_emission(emitter_inputs, -cone.direction) * path.nits_to_units;
+                }
+                const float facing = dot(cone.direction, normal) >= 0.0f ? 1.0f : -1.0f;
+                const vec3 shadow_origin = position + normal * (facing * path.epsilon);
+                if (!openpbr_render_occluded(shadow_origin, cone.direction, cone.distance, path.cell_index,
+                                             pick_sphere ? 0u : path.object_count, path.radius, path.flags))
+                {
+                    const float light_pdf = selection * cone.pdf;
+                    const float weight = openpbr_render_power_heuristic(light_pdf, openpbr_pdf(bsdf, cone.direction));
+                    state.radiance = state.radiance + state.throughput * f * emitted * (weight / light_pdf);
+                }
+            }
+        }
+    }
+
+    // Continue by sampling the BSDF.
+    const OpenPBR_BsdfSample bsdf_sample =
+        openpbr_sample(bsdf, vec3(openpbr_render_random(path.key, step, OPENPBR_RENDER_DIMENSION_BSDF),
+                                  openpbr_render_random(path.key, step, OPENPBR_RENDER_DIMENSION_BSDF + 1u),
+                                  openpbr_render_random(path.key, step, OPENPBR_RENDER_DIMENSION_BSDF + 2u)));
+    if (!(bsdf_sample.pdf > 0.0f))
+    {
+        state.done = true;
+        return;
+    }
+    state.throughput = state.throughput * (bsdf_sample.weight.diffuse + bsdf_sample.weight.specular);
+    if (!openpbr_render_is_finite(state.throughput))
+    {
+        state.nonfinite = true;
+        state.done = true;
+        return;
+    }
+    const bool delta = (bsdf_sample.lobe_type & OPENPBR_RENDER_LOBE_TYPE_SPECULAR) != 0u;
+    state.previous_candidates = delta ? 0u : candidates;
+    state.previous_pdf = bsdf_sample.pdf;
+    state.previous_position = position;
+    const float going = dot(bsdf_sample.direction, normal);
+    if (encloses)
+    {
+        // Below the outward normal of a sphere is its interior, whichever lobe took the
+        // path there (refraction, or the opacity pass-through of a cut-out surface).
+        state.inside_set = going < 0.0f ? (state.inside_set | slot_bit) : (state.inside_set & ~slot_bit);
+    }
+    state.origin = position + normal * (going >= 0.0f ? path.epsilon : -path.epsilon);
+    state.direction = bsdf_sample.direction;
+
+    if (state.surface_events >= path.roulette_depth)
+    {
+        const float survival = min(openpbr_max3(state.throughput), 1.0f);
+        if (!(openpbr_render_random(path.key, step, OPENPBR_RENDER_DIMENSION_ROULETTE) < survival))
+        {
+            state.done = true;
+            return;
+        }
+        state.throughput = state.throughput / survival;
+    }
+}
+
+// The sample a finished (or stopped) path gives.
+OPENPBR_FUNC OpenPBR_RenderSample openpbr_render_path_end(OPENPBR_IN(OpenPBR_RenderPathState) state)
+{
+    OpenPBR_RenderSample result;
+    result.hit_object = state.hit_object;
+    result.nonfinite = false;
+    const vec3 radiance = state.radiance;
+    if (state.nonfinite || !openpbr_render_is_finite(radiance) || radiance.x < 0.0f || radiance.y < 0.0f ||
+        radiance.z < 0.0f)
     {
         result.nonfinite = true;
         result.radiance = vec3(0.0f);
@@ -801,33 +898,29 @@ OPENPBR_FUNC OpenPBR_RenderSample openpbr_render_sample(uint pixel_x, uint pixel
     return result;
 }
 
-// Adds samples [SAMPLE_BEGIN, SAMPLE_END) of one pixel to its accumulation record, in sample
-// order (every backend sums in the same order).
-OPENPBR_FUNC void openpbr_render_pixel(uint pixel_x, uint pixel_y)
+OPENPBR_FUNC OpenPBR_RenderSample openpbr_render_sample(uint pixel_x, uint pixel_y, uint sample_index)
 {
-    const uint width = OPENPBR_RENDER_PARAMETER(OPENPBR_RENDER_PARAMETER_WIDTH);
-    const uint height = OPENPBR_RENDER_PARAMETER(OPENPBR_RENDER_PARAMETER_HEIGHT);
-    if (pixel_x >= width || pixel_y >= height)
+    const OpenPBR_RenderPath path = openpbr_render_path_setup(pixel_x, pixel_y, sample_index);
+    OpenPBR_RenderPathState state = openpbr_render_path_begin(path);
+    while (!state.done && state.step < path.step_limit)
     {
-        return;
+        openpbr_render_path_step(path, state);
     }
-    const uint base = (pixel_y * width + pixel_x) * uint(OPENPBR_RENDER_ACCUMULATION_FLOATS);
-    vec3 sum = vec3(OPENPBR_RENDER_ACCUMULATION_READ(base), OPENPBR_RENDER_ACCUMULATION_READ(base + 1u),
-                    OPENPBR_RENDER_ACCUMULATION_READ(base + 2u));
-    vec3 sum_squares = vec3(OPENPBR_RENDER_ACCUMULATION_READ(base + 3u), OPENPBR_RENDER_ACCUMULATION_READ(base + 4u),
-                            OPENPBR_RENDER_ACCUMULATION_READ(base + 5u));
-    float nonfinite_count = OPENPBR_RENDER_ACCUMULATION_READ(base + 6u);
-    float object_count = OPENPBR_RENDER_ACCUMULATION_READ(base + 7u);
-    const uint sample_end = OPENPBR_RENDER_PARAMETER(OPENPBR_RENDER_PARAMETER_SAMPLE_END);
-    for (uint sample_index = OPENPBR_RENDER_PARAMETER(OPENPBR_RENDER_PARAMETER_SAMPLE_BEGIN); sample_index < sample_end;
-         ++sample_index)
-    {
-        const OpenPBR_RenderSample path = openpbr_render_sample(pixel_x, pixel_y, sample_index);
-        sum = sum + path.radiance;
-        sum_squares = sum_squares + path.radiance * path.radiance;
-        nonfinite_count += path.nonfinite ? 1.0f : 0.0f;
-        object_count += path.hit_object ? 1.0f : 0.0f;
-    }
+    return openpbr_render_path_end(state);
+}
+
+// Adds one sample to the accumulation record that starts at `base` (float sums, so every
+// backend that adds the samples of a pixel in sample order gets the same record).
+OPENPBR_FUNC void openpbr_render_accumulate(uint base, OPENPBR_IN(OpenPBR_RenderSample) value)
+{
+    const vec3 sum = vec3(OPENPBR_RENDER_ACCUMULATION_READ(base), OPENPBR_RENDER_ACCUMULATION_READ(base + 1u),
+                          OPENPBR_RENDER_ACCUMULATION_READ(base + 2u)) +
+                     value.radiance;
+    const vec3 sum_squares = vec3(OPENPBR_RENDER_ACCUMULATION_READ(base + 3u), OPENPBR_RENDER_ACCUMULATION_READ(base + 4u),
+                                  OPENPBR_RENDER_ACCUMULATION_READ(base + 5u)) +
+                             value.radiance * value.radiance;
+    const float nonfinite_count = OPENPBR_RENDER_ACCUMULATION_READ(base + 6u) + (value.nonfinite ? 1.0f : 0.0f);
+    const float object_count = OPENPBR_RENDER_ACCUMULATION_READ(base + 7u) + (value.hit_object ? 1.0f : 0.0f);
     OPENPBR_RENDER_ACCUMULATION_WRITE(base, sum.x);
     OPENPBR_RENDER_ACCUMULATION_WRITE(base + 1u, sum.y);
     OPENPBR_RENDER_ACCUMULATION_WRITE(base + 2u, sum.z);
@@ -836,6 +929,36 @@ OPENPBR_FUNC void openpbr_render_pixel(uint pixel_x, uint pixel_y)
     OPENPBR_RENDER_ACCUMULATION_WRITE(base + 5u, sum_squares.z);
     OPENPBR_RENDER_ACCUMULATION_WRITE(base + 6u, nonfinite_count);
     OPENPBR_RENDER_ACCUMULATION_WRITE(base + 7u, object_count);
+}
+
+// The accumulation record of a pixel, or OPENPBR_RENDER_NO_PIXEL outside the image.
+#define OPENPBR_RENDER_NO_PIXEL 0xffffffffu
+OPENPBR_FUNC uint openpbr_render_record(uint pixel_x, uint pixel_y)
+{
+    const uint width = OPENPBR_RENDER_PARAMETER(OPENPBR_RENDER_PARAMETER_WIDTH);
+    const uint height = OPENPBR_RENDER_PARAMETER(OPENPBR_RENDER_PARAMETER_HEIGHT);
+    if (pixel_x >= width || pixel_y >= height)
+    {
+        return OPENPBR_RENDER_NO_PIXEL;
+    }
+    return (pixel_y * width + pixel_x) * uint(OPENPBR_RENDER_ACCUMULATION_FLOATS);
+}
+
+// Adds samples [SAMPLE_BEGIN, SAMPLE_END) of one pixel to its accumulation record, in sample
+// order.
+OPENPBR_FUNC void openpbr_render_pixel(uint pixel_x, uint pixel_y)
+{
+    const uint base = openpbr_render_record(pixel_x, pixel_y);
+    if (base == OPENPBR_RENDER_NO_PIXEL)
+    {
+        return;
+    }
+    const uint sample_end = OPENPBR_RENDER_PARAMETER(OPENPBR_RENDER_PARAMETER_SAMPLE_END);
+    for (uint sample_index = OPENPBR_RENDER_PARAMETER(OPENPBR_RENDER_PARAMETER_SAMPLE_BEGIN); sample_index < sample_end;
+         ++sample_index)
+    {
+        openpbr_render_accumulate(base, openpbr_render_sample(pixel_x, pixel_y, sample_index));
+    }
 }
 
 OPENPBR_NAMESPACE_END

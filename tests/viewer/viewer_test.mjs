@@ -1,0 +1,195 @@
+#!/usr/bin/env node
+// The material viewer in a real browser: serves viewer/ (node viewer/serve.mjs), drives Debian's
+// headless Chromium on SwiftShader through puppeteer-core, renders three materials (a plain
+// dielectric, a coated metal, a rough glass) to SPP samples at SIZE x SIZE, reads the
+// accumulation back and compares it with `openpbr render` on the CPU (same scene, camera, seed
+// and spp: --materials FILE --cell SIZE). Then a material whose base colour is 5 % off must
+// fail the same comparison, and a broken .mtlx must show a visible error while the page keeps
+// working. Exit status 0 when every check passes; 1 with the failed checks listed.
+// Usage: node tests/viewer/viewer_test.mjs --openpbr BUILD/openpbr --work DIR
+//   [--chromium /usr/bin/chromium] [--screenshot FILE.png]
+import { spawnSync } from 'node:child_process';
+import fs from 'node:fs';
+import path from 'node:path';
+import { fileURLToPath } from 'node:url';
+
+import { launchChromium, startServer, waitForSamples } from '../../viewer/headless.mjs';
+import { parseParameterTable } from '../../viewer/src/parameters.mjs';
+
+const repoRoot = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..', '..');
+const DATA = path.join(repoRoot, 'tests', 'viewer', 'data');
+const SIZE = 64;
+const SPP = 16;
+// The comparison, per colour channel: the image mean of the browser's render against the
+// CPU's. Its noise is the standard error of a 64x64 image mean at 16 spp, from the CPU render's
+// own per-pixel variance of the mean (sqrt(sum of the variances) / pixels), for the difference
+// of two renders (x sqrt 2). Measured (2026-11-27, SwiftShader in Chromium 156): 0.15-0.16 % of
+// the mean for the plain dielectric, 0.54-0.69 % for the coated metal, 0.43-0.63 % for the rough
+// glass. A mean outside 4 of those standard errors fails. Both renders use seed 1, so the right
+// material differs by float rounding only (measured: at most 0.053 standard errors; pixel RMSE
+// 0.01-0.04 x the noise), while the base colour 5 % off moves the plain dielectric's means by
+// 14.7, 8.9 and 5.0 standard errors (R, G, B).
+const SIGMAS = 4;
+const MATERIALS = [
+  { file: 'plain_dielectric.mtlx', features: 'base' },
+  { file: 'coated_metal.mtlx', features: 'coat+metal' },
+  { file: 'rough_glass.mtlx', features: 'transmission' },
+];
+function parseArgs(argv) {
+  const options = { chromium: '/usr/bin/chromium', screenshot: null };
+  for (let i = 0; i < argv.length; i += 2) {
+    const key = argv[i].replace(/^--/, '');
+    if (!['openpbr', 'work', 'chromium', 'screenshot'].includes(key) || i + 1 >= argv.length) {
+      throw new Error(`usage: viewer_test.mjs --openpbr BIN --work DIR [--chromium BIN] [--screenshot PNG] (at '${argv[i]}')`);
+    }
+    options[key] = argv[i + 1];
+  }
+  if (!options.openpbr || !options.work) throw new Error('--openpbr and --work are required');
+  return options;
+}
+
+const failures = [];
+function check(ok, what) {
+  console.log(`${ok ? 'ok  ' : 'FAIL'} ${what}`);
+  if (!ok) failures.push(what);
+}
+
+function cpuReference(options, file) {
+  const stem = path.join(options.work, path.basename(file, '.mtlx'));
+  const result = spawnSync(options.openpbr, [
+    'render', '--materials', file, '--cell', String(SIZE), '--spp', String(SPP), '--seed', '1', '--no-labels', '--quiet',
+    '-o', `${stem}_cpu.png`, '--linear', `${stem}_cpu.json`,
+  ], { encoding: 'utf8' });
+  if (result.status !== 0) throw new Error(`openpbr render ${file} failed:\n${result.stdout}${result.stderr}`);
+  return JSON.parse(fs.readFileSync(`${stem}_cpu.json`, 'utf8'));
+}
+
+// Per channel: the difference of the image means in standard errors of that difference; and per
+// pixel: the RMS difference against the RMS noise of the difference of two renders (the check
+// of `openpbr render --compare`), which catches a wrong picture with a right mean.
+function compare(browser, cpu) {
+  const pixels = cpu.width * cpu.height;
+  const channels = [];
+  let squares = 0;
+  let noise = 0;
+  for (let channel = 0; channel < 3; channel++) {
+    let sumBrowser = 0;
+    let sumCpu = 0;
+    let variance = 0;
+    for (let pixel = 0; pixel < pixels; pixel++) {
+      const index = pixel * 3 + channel;
+      sumBrowser += browser.mean[index];
+      sumCpu += cpu.mean[index];
+      variance += cpu.variance_of_mean[index];
+      squares += (browser.mean[index] - cpu.mean[index]) ** 2;
+    }
+    noise += 2 * variance;
+    const standardError = Math.sqrt(2 * variance) / pixels;
+    const difference = (sumBrowser - sumCpu) / pixels;
+    channels.push({ mean: sumCpu / pixels, difference, standardError, sigmas: Math.abs(difference) / standardError });
+  }
+  return { channels, rmse: Math.sqrt(squares / (3 * pixels)), noise: Math.sqrt(noise / (3 * pixels)) };
+}
+
+function describe(result) {
+  return result.channels.map((c, i) => `${'RGB'[i]} mean ${c.mean.toFixed(4)} diff ${c.difference.toExponential(2)} `
+    + `(SE ${c.standardError.toExponential(2)} = ${(100 * c.standardError / c.mean).toFixed(2)} %, ${c.sigmas.toFixed(3)} SE)`).join('; ')
+    + `; pixel RMSE ${result.rmse.toExponential(2)} vs noise ${result.noise.toExponential(2)}`;
+}
+
+const within = (result) => result.channels.every((c) => c.sigmas <= SIGMAS) && result.rmse < result.noise;
+
+// Loads a .mtlx text through the page (the drop path), waits for SPP samples, reads the mean.
+async function renderInPage(page, text, name) {
+  const generation = await page.evaluate((t, n) => window.openpbrViewer.loadMaterialText(t, n), text, name);
+  if (generation === false) throw new Error(`the page refused ${name}: ${(await page.evaluate(() => window.openpbrViewer.state())).error}`);
+  const state = await waitForSamples(page, SPP, generation);
+  if (state.error) throw new Error(`page error while rendering ${name}: ${state.error}`);
+  return { state, image: await page.evaluate(() => window.openpbrViewer.readMean()) };
+}
+
+async function main() {
+  const options = parseArgs(process.argv.slice(2));
+  fs.mkdirSync(options.work, { recursive: true });
+  const { server, url } = await startServer();
+  let browser;
+  try {
+    browser = await launchChromium(options.chromium, options.work);
+    const page = await browser.newPage();
+    page.on('pageerror', (error) => check(false, `no uncaught page error (${error.message})`));
+    // The page starts on the bundled default material (base features, like the plain dielectric).
+    await page.goto(`${url}?size=${SIZE}&spp=${SPP}&seed=1`);
+    const initial = await waitForSamples(page, SPP);
+    check(initial.error === '', `the page starts without an error${initial.error ? ` (${initial.error})` : ''}`);
+    check(initial.adapter !== '', 'WebGPU adapter present');
+
+    for (const material of MATERIALS) {
+      const file = path.join(DATA, material.file);
+      const cpu = cpuReference(options, file);
+      const { state, image } = await renderInPage(page, fs.readFileSync(file, 'utf8'), material.file);
+      check(state.features === material.features, `${material.file}: kernel specialized to {${state.features}} (expected {${material.features}})`);
+      check(image.samples === SPP && image.size === cpu.width, `${material.file}: ${image.samples} spp at ${image.size}px`);
+      const result = compare(image, cpu);
+      check(within(result), `${material.file} matches openpbr render within ${SIGMAS} SE: ${describe(result)}`);
+      if (material === MATERIALS[0]) {
+        // The same material with its base colour 5 % higher must not pass against the original.
+        const wrongText = fs.readFileSync(file, 'utf8').replace('value="0.8, 0.35, 0.2"', 'value="0.84, 0.3675, 0.21"');
+        check(wrongText.includes('0.3675'), 'the wrong material differs from the right one');
+        const wrong = await renderInPage(page, wrongText, 'plain_dielectric_5_percent_off.mtlx');
+        const wrongResult = compare(wrong.image, cpu);
+        check(!within(wrongResult), `base colour 5 % off fails the comparison: ${describe(wrongResult)}`);
+      }
+    }
+
+    // The page's MaterialX reader takes every bundled material, as the C++ loader does (the
+    // gallery of openpbr render loads them all), under the same names.
+    const materialsDir = path.join(repoRoot, 'materials');
+    const bundled = fs.readdirSync(materialsDir).filter((name) => name.endsWith('.mtlx'));
+    const refused = [];
+    for (const name of bundled) {
+      const parsed = await page.evaluate((t, n) => window.openpbrViewer.parse(t, n), fs.readFileSync(path.join(materialsDir, name), 'utf8'), name);
+      if (!Array.isArray(parsed) || parsed.length === 0) refused.push(`${name}: ${parsed}`);
+    }
+    check(bundled.length > 50 && refused.length === 0, `the page reads all ${bundled.length} bundled materials${refused.length ? `; refused: ${refused.join('; ')}` : ''}`);
+    const unknownInput = await page.evaluate(() => window.openpbrViewer.parse(
+      '<materialx colorspace="lin_rec709"><open_pbr_surface name="s"><input name="base_colour" type="color3" value="1, 1, 1"/></open_pbr_surface></materialx>', 'typo.mtlx'));
+    check(typeof unknownInput === 'string' && unknownInput.includes("input 'base_colour': unknown input name"),
+      `an unknown input is refused with the C++ loader's message (${unknownInput})`);
+
+    // Every parameter of the table has a control, and editing one restarts the accumulation.
+    const table = parseParameterTable(fs.readFileSync(path.join(repoRoot, 'slang', 'openpbr_parameters.h'), 'utf8'));
+    const controls = await page.$$eval('[data-parameter]', (rows) => rows.map((row) => row.dataset.parameter));
+    const missing = table.parameters.map((p) => p.name).filter((name) => !controls.includes(name));
+    check(missing.length === 0 && table.parameters.length > 40,
+      `a control for each of the ${table.parameters.length} parameters${missing.length ? ` (missing: ${missing.join(', ')})` : ''}`);
+    const before = await page.evaluate(() => window.openpbrViewer.state());
+    await page.$eval('#param-specular_roughness', (input) => {
+      input.value = '0.5';
+      input.dispatchEvent(new Event('input'));
+    });
+    const after = await waitForSamples(page, 2, before.generation + 1);
+    // A new generation starts its sample count from 0 (main.mjs restart).
+    check(after.generation === before.generation + 1 && after.error === '' && after.samples >= 2,
+      `editing specular_roughness restarts the accumulation (generation ${before.generation} -> ${after.generation}, now ${after.samples} spp)`);
+
+    const broken = await page.evaluate(() => window.openpbrViewer.loadMaterialText('<materialx><open_pbr_surface name="x"', 'broken.mtlx'));
+    const errorShown = await page.$eval('#error', (box) => !box.hidden && box.textContent);
+    check(broken === false && /broken\.mtlx: malformed XML/.test(errorShown || ''), `a broken .mtlx shows a visible error ('${errorShown}')`);
+    const alive = await page.evaluate(() => window.openpbrViewer.state().samples);
+    check(Number.isInteger(alive), 'the page still answers after the broken file');
+    if (options.screenshot) await page.screenshot({ path: options.screenshot });
+  } finally {
+    await browser?.close();
+    server.kill();
+  }
+  if (failures.length > 0) {
+    console.log(`\n${failures.length} check(s) failed:\n  ${failures.join('\n  ')}`);
+    process.exit(1);
+  }
+  console.log('\nall checks passed');
+}
+
+main().catch((error) => {
+  console.error(`viewer_test: ${error.message}`);
+  process.exit(1);
+});
