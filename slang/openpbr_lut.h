@@ -231,14 +231,14 @@
 #if defined(OPENPBR_LANGUAGE_TARGET_GLSL)
 const float openpbr_lut_data[OPENPBR_LUT_TOTAL_COUNT] = float[](
 #include "generated/openpbr_lut_values.inc"
-,
+    ,
 #include "generated/openpbr_film_lut_values.inc"
 );
 #define OPENPBR_LUT_FETCH(index) openpbr_lut_data[index]
 #elif defined(OPENPBR_LANGUAGE_TARGET_SLANG) || defined(OPENPBR_LANGUAGE_TARGET_HLSL)
 static const float openpbr_lut_data[OPENPBR_LUT_TOTAL_COUNT] = {
 #include "generated/openpbr_lut_values.inc"
-,
+    ,
 #include "generated/openpbr_film_lut_values.inc"
 };
 #define OPENPBR_LUT_FETCH(index) openpbr_lut_data[index]
@@ -247,12 +247,12 @@ namespace openpbr {
 // Global memory, not __constant__: the tables (about 0.2 MiB) exceed the 64 KiB constant bank.
 __device__ const float openpbr_lut_data_device[OPENPBR_LUT_TOTAL_COUNT] = {
 #include "generated/openpbr_lut_values.inc"
-,
+    ,
 #include "generated/openpbr_film_lut_values.inc"
 };
 static const float openpbr_lut_data_host[OPENPBR_LUT_TOTAL_COUNT] = {
 #include "generated/openpbr_lut_values.inc"
-,
+    ,
 #include "generated/openpbr_film_lut_values.inc"
 };
 }  // namespace openpbr
@@ -265,7 +265,7 @@ static const float openpbr_lut_data_host[OPENPBR_LUT_TOTAL_COUNT] = {
 #elif defined(OPENPBR_LANGUAGE_TARGET_METAL)
 constant float openpbr_lut_data[OPENPBR_LUT_TOTAL_COUNT] = {
 #include "generated/openpbr_lut_values.inc"
-,
+    ,
 #include "generated/openpbr_film_lut_values.inc"
 };
 #define OPENPBR_LUT_FETCH(index) openpbr_lut_data[index]
@@ -273,7 +273,7 @@ constant float openpbr_lut_data[OPENPBR_LUT_TOTAL_COUNT] = {
 namespace openpbr {
 inline constexpr float openpbr_lut_data[OPENPBR_LUT_TOTAL_COUNT] = {
 #include "generated/openpbr_lut_values.inc"
-,
+    ,
 #include "generated/openpbr_film_lut_values.inc"
 };
 }  // namespace openpbr
@@ -834,15 +834,14 @@ OPENPBR_FUNC OpenPBR_FilmLobeTable openpbr_film_lobe_table(float mu, float alpha
 OPENPBR_FUNC float openpbr_film_table_node(int p, int m, int r, int channel)
 {
 #if OPENPBR_USE_TEXTURE_LUTS
-    const vec3 uvw = vec3((float(p) + 0.5f) / float(OPENPBR_LUT_FILM_QUANTILE_SIZE),
-                          (float(m) + 0.5f) / float(OPENPBR_LUT_FILM_SIZE),
-                          (float(channel * OPENPBR_LUT_FILM_SIZE + r) + 0.5f) /
-                              float(OPENPBR_LUT_FILM_CHANNEL_COUNT * OPENPBR_LUT_FILM_SIZE));
+    const vec3 uvw = vec3(
+        (float(p) + 0.5f) / float(OPENPBR_LUT_FILM_QUANTILE_SIZE), (float(m) + 0.5f) / float(OPENPBR_LUT_FILM_SIZE),
+        (float(channel * OPENPBR_LUT_FILM_SIZE + r) + 0.5f) / float(OPENPBR_LUT_FILM_CHANNEL_COUNT * OPENPBR_LUT_FILM_SIZE));
     return OPENPBR_SAMPLE_3D_TEXTURE(OPENPBR_LUT_TEXTURE_FILM_LOBE, uvw);
 #else
-    return OPENPBR_LUT_FETCH(OPENPBR_LUT_FILM_OFFSET +
-                             ((channel * OPENPBR_LUT_FILM_SIZE + r) * OPENPBR_LUT_FILM_SIZE + m) * OPENPBR_LUT_FILM_QUANTILE_SIZE +
-                             p);
+    return OPENPBR_LUT_FETCH(
+        OPENPBR_LUT_FILM_OFFSET +
+        ((channel * OPENPBR_LUT_FILM_SIZE + r) * OPENPBR_LUT_FILM_SIZE + m) * OPENPBR_LUT_FILM_QUANTILE_SIZE + p);
 #endif
 }
 
@@ -853,8 +852,8 @@ OPENPBR_FUNC float openpbr_film_lobe_node(OPENPBR_IN(OpenPBR_FilmLobeTable) tabl
 {
     const int m = table.mu_index;
     const int r = table.r_index;
-    const float low_r = mix(openpbr_film_table_node(p, m, r, channel), openpbr_film_table_node(p, m + 1, r, channel),
-                            table.mu_weight);
+    const float low_r =
+        mix(openpbr_film_table_node(p, m, r, channel), openpbr_film_table_node(p, m + 1, r, channel), table.mu_weight);
     const float high_r = mix(openpbr_film_table_node(p, m, r + 1, channel),
                              openpbr_film_table_node(p, m + 1, r + 1, channel), table.mu_weight);
     return mix(low_r, high_r, table.r_weight);

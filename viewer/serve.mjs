@@ -26,9 +26,11 @@ const CONTENT_TYPES = {
   '.wgsl': 'text/plain; charset=utf-8', '.h': 'text/plain; charset=utf-8', '.mtlx': 'application/xml',
   '.json': 'application/json', '.png': 'image/png',
 };
+// Each table's tracked files, concatenated in order as the build's openpbr_lut.bin is (the
+// compensation tables, then the thin film's lobe table; slang/openpbr_lut.h).
 const TABLES = {
-  'lut.bin': 'slang/generated/openpbr_lut_values.inc',
-  'fuzz_ltc.bin': 'slang/generated/openpbr_fuzz_ltc_values.inc',
+  'lut.bin': ['slang/generated/openpbr_lut_values.inc', 'slang/generated/openpbr_film_lut_values.inc'],
+  'fuzz_ltc.bin': ['slang/generated/openpbr_fuzz_ltc_values.inc'],
 };
 
 function parseArgs(argv) {
@@ -106,7 +108,7 @@ function main() {
     } else if (route.startsWith('/api/tables/') && TABLES[route.slice('/api/tables/'.length)]) {
       const name = route.slice('/api/tables/'.length);
       try {
-        if (!tables.has(name)) tables.set(name, readTableInc(path.join(repoRoot, TABLES[name])));
+        if (!tables.has(name)) tables.set(name, Buffer.concat(TABLES[name].map((file) => readTableInc(path.join(repoRoot, file)))));
         send(response, 200, 'application/octet-stream', tables.get(name));
       } catch (error) {
         sendError(response, 500, error.message);

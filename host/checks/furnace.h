@@ -136,6 +136,10 @@ struct FurnaceOptions
 {
     std::uint64_t samples = 1u << 20;  // per configuration, view and side, e.g. 1048576
     std::string name_filter;           // substring of the configuration name; empty = all
+    // Further substrings, e.g. {"film_diffuse_nocoat_air_n1p2_d0p1", "film_metal_coat1"}: a
+    // configuration runs when its name contains name_filter (if set) and, if this list is not
+    // empty, one of these; one pass, so GPU paths build their pipeline once for all of them.
+    std::vector<std::string> name_filters;
     // Paths to run, e.g. {"cpu", "slang-spirv"}: "cpu" is the CPU build (estimate_furnace_albedo);
     // any other name is a GPU path of the conformance kernel, run through the stability runner
     // (host/checks/stability.h: random u, the mean of the sample weights). Empty = {"cpu"}.

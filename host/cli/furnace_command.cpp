@@ -46,9 +46,17 @@ int run_furnace(const FurnaceSettings& settings)
     {
         failures += row.within_tolerance ? 0 : 1;
     }
-    std::cout << rows.size() - failures << " of " << rows.size()
-              << " within tolerance (|1 - albedo| <= " << furnace_tolerance << " for cos >= " << furnace_tolerance_min_cos
-              << ", albedo <= " << furnace_max_albedo << " everywhere)\n";
+    std::cout << rows.size() - failures << " of " << rows.size() << " within tolerance (";
+    if (settings.furnace.film_grid)
+    {
+        std::cout << "albedo in [" << furnace_min_albedo(FurnaceExpectation::thin_film_grid, 1.0f) << ", "
+                  << furnace_max_albedo << "] for cos >= " << furnace_tolerance_min_cos;
+    }
+    else
+    {
+        std::cout << "|1 - albedo| <= " << furnace_tolerance << " for cos >= " << furnace_tolerance_min_cos;
+    }
+    std::cout << ", albedo <= " << furnace_max_albedo << " everywhere, 3 standard errors; known limits: their bands)\n";
     return failures == 0 ? 0 : 2;
 }
 

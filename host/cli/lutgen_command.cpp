@@ -59,8 +59,9 @@ CLI::App* add_lutgen_subcommand(CLI::App& parent, const CommandContext&)
     command->add_flag("--progress", options.progress_always, "print progress even when stderr is not a terminal");
     command->add_option("--only", settings->only, "write one file only: compensation (tables 0-4) or film (table 5)")
         ->check(CLI::IsMember({"compensation", "film"}));
-    command->add_option("--film-lattice", settings->film_options.lattice_size,
-                        "reference points per axis of each film-table cell (e.g. 256: 65536 per cell)")
+    command
+        ->add_option("--film-lattice", settings->film_options.lattice_size,
+                     "reference points per axis of each film-table cell (e.g. 256: 65536 per cell)")
         ->capture_default_str()
         ->check(CLI::Range(2, 4096));
     command->callback([settings]() {
@@ -70,8 +71,8 @@ CLI::App* add_lutgen_subcommand(CLI::App& parent, const CommandContext&)
                 const std::vector<float> table = generate_lut(settings->options);
                 const std::string values_path = settings->output_directory + "/openpbr_lut_values.inc";
                 write_lut_values_inc(values_path, table, describe(settings->options));
-                std::cout << "wrote " << values_path << " (" << table.size() << " values, "
-                          << describe(settings->options) << ")\n";
+                std::cout << "wrote " << values_path << " (" << table.size() << " values, " << describe(settings->options)
+                          << ")\n";
             }
             if (settings->only != "compensation")
             {

@@ -567,6 +567,25 @@ std::vector<AccuracyRow> run_accuracy_study(const AccuracyOptions& requested)
 
     const std::vector<AccuracyMaterial> white_materials = {metal(1.0f, 0.2f), metal(1.0f, 0.5f), metal(1.0f, 0.9f),
                                                            glass(0.2f),       glass(0.5f),       glass(0.9f)};
+    // The film-estimate knob's furnace: a white diffuse base under a white film (IOR 1.4) under a
+    // white coat of weight 1 (IOR 1.6), the stack whose film turns evanescent and whose base
+    // reflects totally inside the lobe (README "Known limits"), films of 0.3-1.5 um, coat and
+    // specular roughness 0.1-0.8.
+    std::vector<AccuracyMaterial> white_film_materials;
+    for (const float thickness : {0.3f, 0.6f, 0.9f, 1.5f})
+    {
+        for (const float roughness : {0.1f, 0.4f, 0.8f})
+        {
+            AccuracyMaterial film;
+            film.base_color[0] = film.base_color[1] = film.base_color[2] = 1.0f;
+            film.specular_roughness = roughness;
+            film.coat_weight = 1.0f;
+            film.coat_roughness = roughness;
+            film.thin_film_weight = 1.0f;
+            film.thin_film_thickness = thickness;
+            white_film_materials.push_back(film);
+        }
+    }
     // CPU times of every variant in rounds (each round times every variant once, the minimum
     // over the rounds is kept): a burst of load from other processes then slows one round of
     // every variant instead of every round of one, so the settings stay comparable.
@@ -649,6 +668,28 @@ std::vector<AccuracyRow> run_accuracy_study(const AccuracyOptions& requested)
             }
             add(knob, setting, "eval + sample outputs differing in bits from the array build (count)", double(differing),
                 "CPU ns per prepare+eval", eval_ns);
+        }
+        if (variant.knob == "film estimate" || variant.knob == "shipped")
+        {
+            // The largest deviation from 1 of any channel's albedo over the filmed white materials
+            // at view cos 1, 0.5 and 0.1, and the time of prepare + eval on the thin-film workload.
+            double film_furnace = 0.0;
+            for (const AccuracyMaterial& white : white_film_materials)
+            {
+                for (const float mu : {1.0f, 0.5f, 0.1f})
+                {
+                    const AccuracyAlbedo albedo = variant.albedo(white, mu, options.albedo_samples, 91);
+                    for (int channel = 0; channel < 3; ++channel)
+                    {
+                        film_furnace = std::max(film_furnace, std::abs(1.0 - albedo.mean[channel]));
+                    }
+                }
+            }
+            std::vector<float> film_values(3 * queries.size());
+            const double film_ns =
+                time_ns_per_query(queries.size(), [&] { variant.eval(film_materials, queries, film_values.data()); });
+            add(knob, setting, "thin-film white furnace deviation under a coat (max)", film_furnace,
+                "CPU ns per prepare+eval (thin-film materials)", film_ns);
         }
         if (variant.setting.find("thin film") != std::string::npos || variant.knob == "shipped")
         {

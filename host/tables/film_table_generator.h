@@ -38,10 +38,10 @@ namespace openpbr::host {
 
 struct FilmTableOptions
 {
-    int quantile_size = 0;     // nodes on the probability axis, e.g. 33 (0: the compiled size)
-    int size = 0;              // nodes on the view and roughness axes, e.g. 32 (0: the compiled size)
-    int lattice_size = 256;    // reference points per axis per cell, e.g. 256 (65536 per cell)
-    int threads = 0;           // 0: every core
+    int quantile_size = 0;   // nodes on the probability axis, e.g. 33 (0: the compiled size)
+    int size = 0;            // nodes on the view and roughness axes, e.g. 32 (0: the compiled size)
+    int lattice_size = 256;  // reference points per axis per cell, e.g. 256 (65536 per cell)
+    int threads = 0;         // 0: every core
 };
 
 // The microfacet cosines of one lobe, as the generator integrates them: (c, weight) pairs of the

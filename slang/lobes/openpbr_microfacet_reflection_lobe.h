@@ -288,6 +288,14 @@ OPENPBR_FUNC float openpbr_ggx_lobe_dielectric_reflection_albedo(float mu, float
 // isotropic lobe does not depend on the view's azimuth; an anisotropic lobe reads the table at
 // its root-mean-square alpha. Measured against a 96 x 96-node lobe average
 // (tests/bsdf/test_film_estimate.cpp, docs/thin-film-estimate.md).
+// The estimate's method, e.g. -DOPENPBR_FILM_ESTIMATE_METHOD=OPENPBR_FILM_ESTIMATE_AT_VIEW:
+// SEGMENTS (default) the lobe's segments below; AT_VIEW the film at the view's cosine only, as
+// for a mirror (what most implementations do; the accuracy study's comparison row).
+#define OPENPBR_FILM_ESTIMATE_SEGMENTS 0
+#define OPENPBR_FILM_ESTIMATE_AT_VIEW 1
+#ifndef OPENPBR_FILM_ESTIMATE_METHOD
+#define OPENPBR_FILM_ESTIMATE_METHOD OPENPBR_FILM_ESTIMATE_SEGMENTS
+#endif
 // Segments of the propagating film past a critical cosine, e.g. 8 (the default) or 2 for a
 // cheaper estimate; and the first and last cut in w = sqrt(c^2 - c*^2) (0.015 and 0.53: from
 // where total reflection ends at a film's edge to where the lobe is smooth again).
@@ -339,8 +347,8 @@ OPENPBR_FUNC OpenPBR_FilmSegment openpbr_film_segment(float cosine, float path_s
 // The segment of the lobe's light between shares p_start and p_end, at its median cosine with the
 // quartiles' path spread.
 OPENPBR_FUNC OpenPBR_FilmSegment openpbr_film_median_segment(OPENPBR_IN(OpenPBR_FilmLobeTable) table, float p_start,
-                                                             float p_end, float thickness_um, float film_offset,
-                                                             float n_o, bool with_dielectric, bool with_metal)
+                                                             float p_end, float thickness_um, float film_offset, float n_o,
+                                                             bool with_dielectric, bool with_metal)
 {
     const float share = max(p_end - p_start, 0.0f);
     const float lower_quartile = openpbr_film_optical_path(thickness_um, film_offset, n_o,
@@ -365,8 +373,8 @@ OPENPBR_FUNC OpenPBR_FilmSegment openpbr_film_mean_segment(OPENPBR_IN(OpenPBR_Fi
 {
     const float share = max(end.x - start.x, 0.0f);
     const float cosine = share > 0.0f ? (end.y - start.y) / share : 0.0f;
-    const OpenPBR_FilmSegment quartiles = openpbr_film_median_segment(table, start.x, end.x, thickness_um, film_offset, n_o,
-                                                                      with_dielectric, with_metal);
+    const OpenPBR_FilmSegment quartiles =
+        openpbr_film_median_segment(table, start.x, end.x, thickness_um, film_offset, n_o, with_dielectric, with_metal);
     return openpbr_film_segment(cosine, quartiles.path_spread_um, quartiles.dielectric_share, quartiles.metal_share);
 }
 
@@ -389,7 +397,7 @@ OPENPBR_FUNC OpenPBR_FresnelPair openpbr_base_film_estimate(OPENPBR_IN(OpenPBR_F
 
     OpenPBR_FilmSegment segments[OPENPBR_FILM_ESTIMATE_MAX_SEGMENTS];
     int segment_count = 0;
-    if (openpbr_ggx_is_delta(alpha))
+    if (openpbr_ggx_is_delta(alpha) || OPENPBR_FILM_ESTIMATE_METHOD == OPENPBR_FILM_ESTIMATE_AT_VIEW)
     {
         // A mirror reflects at the view.
         segments[0] = openpbr_film_segment(view.z, 0.0f, dielectric_filmed && base_critical <= view.z ? 1.0f : 0.0f,
@@ -402,12 +410,13 @@ OPENPBR_FUNC OpenPBR_FresnelPair openpbr_base_film_estimate(OPENPBR_IN(OpenPBR_F
             openpbr_film_lobe_table(view.z, sqrt(0.5f * (alpha.x * alpha.x + alpha.y * alpha.y)));
         // Shares below the two critical cosines.
         const vec2 below_base = base_critical > 0.0f ? openpbr_film_lobe_cumulative(table, base_critical) : vec2(0.0f);
-        const vec2 below_film = film_critical > base_critical ? openpbr_film_lobe_cumulative(table, film_critical) : below_base;
+        const vec2 below_film =
+            film_critical > base_critical ? openpbr_film_lobe_cumulative(table, film_critical) : below_base;
         // Total reflection at the base: the metal only.
         if (metal_filmed && below_base.x > 1e-6f)
         {
-            segments[segment_count] = openpbr_film_median_segment(table, 0.0f, below_base.x, thickness_um, film_offset, n_o,
-                                                                  false, true);
+            segments[segment_count] =
+                openpbr_film_median_segment(table, 0.0f, below_base.x, thickness_um, film_offset, n_o, false, true);
             ++segment_count;
         }
         // The evanescent film between the two critical cosines: two halves of equal share at
@@ -415,8 +424,8 @@ OPENPBR_FUNC OpenPBR_FresnelPair openpbr_base_film_estimate(OPENPBR_IN(OpenPBR_F
         if (below_film.x - below_base.x > 1e-6f)
         {
             const float middle = 0.5f * (below_base.x + below_film.x);
-            segments[segment_count] = openpbr_film_median_segment(table, below_base.x, middle, thickness_um, film_offset, n_o,
-                                                                  dielectric_filmed, metal_filmed);
+            segments[segment_count] = openpbr_film_median_segment(table, below_base.x, middle, thickness_um, film_offset,
+                                                                  n_o, dielectric_filmed, metal_filmed);
             segments[segment_count + 1] = openpbr_film_median_segment(table, middle, below_film.x, thickness_um, film_offset,
                                                                       n_o, dielectric_filmed, metal_filmed);
             segment_count += 2;
@@ -460,8 +469,8 @@ OPENPBR_FUNC OpenPBR_FresnelPair openpbr_base_film_estimate(OPENPBR_IN(OpenPBR_F
                 {
                     break;
                 }
-                const vec2 end = cut_cosine > 1.0f ? openpbr_film_lobe_total(table)
-                                                   : openpbr_film_lobe_cumulative(table, cut_cosine);
+                const vec2 end =
+                    cut_cosine > 1.0f ? openpbr_film_lobe_total(table) : openpbr_film_lobe_cumulative(table, cut_cosine);
                 if (end.x - start.x > 1e-6f)
                 {
                     segments[segment_count] = openpbr_film_mean_segment(table, start, end, thickness_um, film_offset, n_o,
@@ -476,8 +485,8 @@ OPENPBR_FUNC OpenPBR_FresnelPair openpbr_base_film_estimate(OPENPBR_IN(OpenPBR_F
         {
             const vec2 whole = openpbr_film_lobe_total(table);
             const vec2 at_mean = openpbr_film_lobe_cumulative(table, whole.y);
-            segments[0] = openpbr_film_mean_segment(table, vec2(0.0f), at_mean, thickness_um, film_offset, n_o, dielectric_filmed,
-                                                    metal_filmed);
+            segments[0] = openpbr_film_mean_segment(table, vec2(0.0f), at_mean, thickness_um, film_offset, n_o,
+                                                    dielectric_filmed, metal_filmed);
             segments[1] = openpbr_film_mean_segment(table, at_mean, whole, thickness_um, film_offset, n_o, dielectric_filmed,
                                                     metal_filmed);
             segment_count = 2;

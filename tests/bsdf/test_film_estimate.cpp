@@ -330,7 +330,8 @@ TEST(FilmEstimateAzimuth, IsotropicLobesIgnoreTheViewAzimuth)
         for (const float azimuth : {0.6f, 2.0f, 4.5f})
         {
             const glm::vec3 view(sine * std::cos(azimuth), sine * std::sin(azimuth), c.view_cosine);
-            const OpenPBR_FresnelPair turned = openpbr_base_film_estimate(lobe.dielectric, true, lobe.metal, true, view, alpha);
+            const OpenPBR_FresnelPair turned =
+                openpbr_base_film_estimate(lobe.dielectric, true, lobe.metal, true, view, alpha);
             EXPECT_NEAR(turned.first.x, along_x.first.x, 1e-6f) << c.name << " azimuth " << azimuth;
             EXPECT_NEAR(turned.first.z, along_x.first.z, 1e-6f) << c.name << " azimuth " << azimuth;
             EXPECT_NEAR(turned.second.y, along_x.second.y, 1e-6f) << c.name << " azimuth " << azimuth;

@@ -150,8 +150,7 @@ TEST(FilmTable, MatchesTheLobeIntegratedOverLightDirections)
         const double mean = integral.first_moment / integral.total;
         largest_mean_difference =
             std::max(largest_mean_difference, std::abs(shipped_node(quantile_size - 1, mu_index, r_index, 1) - mean));
-        EXPECT_NEAR(shipped_node(quantile_size - 1, mu_index, r_index, 1), mean, 2e-4)
-            << "mu " << mu << " alpha " << alpha;
+        EXPECT_NEAR(shipped_node(quantile_size - 1, mu_index, r_index, 1), mean, 2e-4) << "mu " << mu << " alpha " << alpha;
         for (int p = 4; p < quantile_size - 1; p += 4)
         {
             const double quantile = shipped_node(p, mu_index, r_index, 0);

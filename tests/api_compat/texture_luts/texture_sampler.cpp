@@ -15,7 +15,7 @@ namespace {
 
 const float lut_values[] = {
 #include "slang/generated/openpbr_lut_values.inc"
-,
+    ,
 #include "slang/generated/openpbr_film_lut_values.inc"
 };
 const float fuzz_values[] = {
