@@ -263,31 +263,37 @@ OPENPBR_FUNC float openpbr_ggx_lobe_dielectric_reflection_albedo(float mu, float
 // the film), and the dielectric base's, past which the base reflects totally with or without
 // the film (n_o sin theta >= n_b). A quadrature over c that ignores them weighs the wrong
 // microfacets: four visible normals evaluated one by one lost up to 13.6 % and gained up to
-// 5.8 % in a white furnace under a coat. So the lobe's light is cut at those critical cosines
-// into regions, with the exact share on each side from table 5 (the quantiles Q(p) and partial
-// moments of c for this view and roughness, host/tables/film_table_generator.h;
-// openpbr_film_lobe_cumulative inverts Q), and each region is evaluated on its own:
+// 5.8 % in a white furnace under a coat. So the lobe's light is cut into segments at those
+// critical cosines and at further cosines, with each segment's exact share and mean from table 5
+// (the quantiles Q(p) and partial first moments of c for this view and roughness,
+// host/tables/film_table_generator.h; openpbr_film_lobe_cumulative inverts Q):
 //  * below the base's critical cosine the dielectric's change is 0 (it reflects totally, filmed
-//    or not); only a filmed metal is evaluated there, once, at the region's median;
-//  * a region whose lower end is a critical cosine (the evanescent film between the two
-//    critical cosines, or the propagating film just past the film's) is split into two halves
-//    of equal share, each evaluated at its median cosine Q(p_mid). The film's quantities change
-//    like sqrt(c^2 - c_crit^2) there, and quantiles, unlike means, follow any monotonic change of
-//    variable: the median cosine gives the median optical path, and the quartiles its spread;
-//  * the region with no critical cosine below it (the whole lobe in air) is split at its mean
-//    cosine, each half evaluated at its mean, as the grouped estimate did (its error in air,
-//    0.009, halves that of medians).
-// The film's phase varies across a segment; averaging e^{i m delta} over it damps harmonic m
-// like the spread of a spectral lobe does, so each segment passes the standard deviation of its
-// optical path 2 n_f d cos_f to the film (OpenPBR_ThinFilmInputs.optical_path_spread_um): from
-// the quartiles, (path(Q(p_75)) - path(Q(p_25))) / 1.349 (a Gaussian's interquartile range), or
-// in the mean-split region to first order in the cosine's deviation,
-// d path / d c = 2 d n_o^2 c / (n_f cos_f). At most five evaluations, both bases in each (they
-// share the film's harmonics); two in air or under a coat less dense than film and base.
-// The segments depend on the view's cosine and the lobe's roughness only, so the estimate of an
-// isotropic lobe does not depend on the view's azimuth; an anisotropic lobe reads the table at
-// its root-mean-square alpha. Measured against a 96 x 96-node lobe average
-// (tests/bsdf/test_film_estimate.cpp, docs/thin-film-estimate.md).
+//    or not); only a filmed metal is evaluated there, once;
+//  * the evanescent film between the two critical cosines (or below the film's): two halves, cut
+//    at the middle cosine;
+//  * the propagating film past the higher critical cosine c*: cut where w = sqrt(c^2 - c*^2)
+//    crosses OPENPBR_FILM_ESTIMATE_CRITICAL_SEGMENTS - 1 thresholds spaced geometrically from
+//    OPENPBR_FILM_ESTIMATE_FIRST_CUT to OPENPBR_FILM_ESTIMATE_LAST_CUT, and at the lobe's median.
+//    Past c* the stack's quantities are smooth functions of w (n_o w is the film's or the base's
+//    n cos in it), not of c, and the reflectance falls from total reflection on the scale of w
+//    itself (coat 1.33 over film 1.2: the change falls from 0.87 at c* to 0.21 at c* + 0.04):
+//    cells even in c or in the lobe's share put that fall inside one cell (the largest error of
+//    the dielectric's change was 0.04 with two halves, 0.003 with these cuts at exact moments).
+//    The median keeps two segments in a near-mirror lobe that lies between two thresholds;
+//  * without any critical cosine (in air, under a coat less dense than film and base): two
+//    halves, cut at the lobe's mean cosine.
+// Segments at or below c* are evaluated at their median cosine (the film's quantities change
+// like sqrt there, and quantiles, unlike means, follow any monotonic change of variable), the
+// others at their mean. The film's phase varies across a segment; averaging e^{i m delta} over it
+// damps harmonic m like the spread of a spectral lobe does, so each segment passes the spread of
+// its optical path 2 n_f d cos_f to the film (OpenPBR_ThinFilmInputs.optical_path_spread_um), from
+// its quartiles (openpbr_film_segment_point). Up to OPENPBR_FILM_ESTIMATE_MAX_SEGMENTS film
+// evaluations past a critical cosine (fewer for narrow lobes: empty segments are skipped), both
+// bases in each (they share the film's harmonics); two in air or under a coat less dense than
+// film and base. The segments depend on the view's cosine and the lobe's roughness only, so the
+// estimate of an isotropic lobe does not depend on the view's azimuth; an anisotropic lobe reads
+// the table at its root-mean-square alpha. Measured against a 96 x 96-node lobe average
+// (tests/bsdf/test_film_estimate.cpp) and a 128 x 128-node one (docs/thin-film-estimate.md).
 // The estimate's method, e.g. -DOPENPBR_FILM_ESTIMATE_METHOD=OPENPBR_FILM_ESTIMATE_AT_VIEW:
 // SEGMENTS (default) the lobe's segments below; AT_VIEW the film at the view's cosine only, as
 // for a mirror (what most implementations do; the accuracy study's comparison row).
@@ -323,59 +329,30 @@ OPENPBR_FUNC float openpbr_film_optical_path(float thickness_um, float film_offs
     return 2.0f * thickness_um * openpbr_safe_sqrt(film_offset + openpbr_square(n_o * cosine));
 }
 
-// One segment of the lobe for openpbr_base_film_estimate: where the film is evaluated and with
-// which spread, and the shares of the light the two bases give it.
-struct OpenPBR_FilmSegment
-{
-    float cosine;
-    float path_spread_um;
-    float dielectric_share;  // 0: the dielectric is not evaluated here (total reflection)
-    float metal_share;
-};
-
-OPENPBR_FUNC OpenPBR_FilmSegment openpbr_film_segment(float cosine, float path_spread_um, float dielectric_share,
-                                                      float metal_share)
-{
-    OpenPBR_FilmSegment segment;
-    segment.cosine = clamp(cosine, 0.0f, 1.0f);
-    segment.path_spread_um = path_spread_um;
-    segment.dielectric_share = dielectric_share;
-    segment.metal_share = metal_share;
-    return segment;
-}
-
-// The segment of the lobe's light between shares p_start and p_end, at its median cosine with the
-// quartiles' path spread.
-OPENPBR_FUNC OpenPBR_FilmSegment openpbr_film_median_segment(OPENPBR_IN(OpenPBR_FilmLobeTable) table, float p_start,
-                                                             float p_end, float thickness_um, float film_offset, float n_o,
-                                                             bool with_dielectric, bool with_metal)
-{
-    const float share = max(p_end - p_start, 0.0f);
-    const float lower_quartile = openpbr_film_optical_path(thickness_um, film_offset, n_o,
-                                                           openpbr_film_lobe_quantile(table, p_start + 0.25f * share));
-    const float upper_quartile = openpbr_film_optical_path(thickness_um, film_offset, n_o,
-                                                           openpbr_film_lobe_quantile(table, p_start + 0.75f * share));
-    return openpbr_film_segment(openpbr_film_lobe_quantile(table, p_start + 0.5f * share),
-                                abs(upper_quartile - lower_quartile) * (1.0f / 1.349f), with_dielectric ? share : 0.0f,
-                                with_metal ? share : 0.0f);
-}
-
-// The segment between two cumulative bounds (share, E[c; .]), at its mean cosine, with the
-// quartiles' path spread. (A variance from tabulated second moments was tried and dropped:
-// between the table's view and roughness nodes second moments blend as a mixture of the
-// neighbouring lobes, whose spread of means, e.g. 0.012 in cosine between the nodes around a view
-// cosine of 0.5, dwarfs the width of a near-mirror lobe and damped its fringes away, an error of
-// 0.105 in the dielectric's change under a coat of IOR 1.6, 0.022 with the quartiles; quantiles
-// and first moments blend as the lobes shift.)
-OPENPBR_FUNC OpenPBR_FilmSegment openpbr_film_mean_segment(OPENPBR_IN(OpenPBR_FilmLobeTable) table, vec2 start, vec2 end,
-                                                           float thickness_um, float film_offset, float n_o,
-                                                           bool with_dielectric, bool with_metal)
+// The segment of the lobe's light between the cumulative bounds start and end (share,
+// E[c; c <= x]): where the film is evaluated, at the segment's median cosine Q(p_mid)
+// (at_median) or at its mean cosine, and the spread of its optical path from its quartiles,
+// (path(Q(p_75)) - path(Q(p_25))) / 1.349 (a Gaussian's interquartile range). (A variance from
+// tabulated second moments was tried and dropped: between the table's view and roughness nodes
+// second moments blend as a mixture of the neighbouring lobes, whose spread of means, e.g. 0.012
+// in cosine between the nodes around a view cosine of 0.5, dwarfs the width of a near-mirror
+// lobe and damped its fringes away: an error of 0.105 in the dielectric's change under a coat of
+// IOR 1.6, 0.022 with the quartiles. Quantiles and first moments blend as the lobes shift.)
+// One quantile look-up in a loop of three, so the look-up is compiled once.
+OPENPBR_FUNC vec2 openpbr_film_segment_point(OPENPBR_IN(OpenPBR_FilmLobeTable) table, vec2 start, vec2 end, bool at_median,
+                                             float thickness_um, float film_offset, float n_o)
 {
     const float share = max(end.x - start.x, 0.0f);
-    const float cosine = share > 0.0f ? (end.y - start.y) / share : 0.0f;
-    const OpenPBR_FilmSegment quartiles =
-        openpbr_film_median_segment(table, start.x, end.x, thickness_um, film_offset, n_o, with_dielectric, with_metal);
-    return openpbr_film_segment(cosine, quartiles.path_spread_um, quartiles.dielectric_share, quartiles.metal_share);
+    float quartile_paths[3];
+    float median = 0.0f;
+    for (int quartile = 0; quartile < 3; ++quartile)
+    {
+        const float cosine = openpbr_film_lobe_quantile(table, start.x + 0.25f * float(quartile + 1) * share);
+        quartile_paths[quartile] = openpbr_film_optical_path(thickness_um, film_offset, n_o, cosine);
+        median = quartile == 1 ? cosine : median;
+    }
+    const float mean = share > 0.0f ? (end.y - start.y) / share : median;
+    return vec2(clamp(at_median ? median : mean, 0.0f, 1.0f), abs(quartile_paths[2] - quartile_paths[0]) * (1.0f / 1.349f));
 }
 
 OPENPBR_FUNC OpenPBR_FresnelPair openpbr_base_film_estimate(OPENPBR_IN(OpenPBR_Fresnel) dielectric, bool dielectric_active,
@@ -394,128 +371,104 @@ OPENPBR_FUNC OpenPBR_FresnelPair openpbr_base_film_estimate(OPENPBR_IN(OpenPBR_F
     const float film_offset = (n_f - n_o) * (n_f + n_o);
     const float film_critical = openpbr_critical_cosine(n_f, n_o);
     const float base_critical = dielectric_filmed ? openpbr_critical_cosine(dielectric.base_ior, n_o) : 0.0f;
+    const float lowest = max(film_critical, base_critical);
 
-    OpenPBR_FilmSegment segments[OPENPBR_FILM_ESTIMATE_MAX_SEGMENTS];
-    int segment_count = 0;
-    if (openpbr_ggx_is_delta(alpha) || OPENPBR_FILM_ESTIMATE_METHOD == OPENPBR_FILM_ESTIMATE_AT_VIEW)
+    vec3 dielectric_sum = vec3(0.0f);
+    vec3 metal_sum = vec3(0.0f);
+    const bool at_view = openpbr_ggx_is_delta(alpha) || OPENPBR_FILM_ESTIMATE_METHOD == OPENPBR_FILM_ESTIMATE_AT_VIEW;
+    const OpenPBR_FilmLobeTable table =
+        openpbr_film_lobe_table(view.z, sqrt(0.5f * (alpha.x * alpha.x + alpha.y * alpha.y)));
+    // The cosines where the segments end, in increasing order (the last one, 2, above every
+    // cosine: the whole lobe), see the method above.
+    float cuts[OPENPBR_FILM_ESTIMATE_MAX_SEGMENTS];
+    int cut_count = 0;
+    if (at_view)
     {
-        // A mirror reflects at the view.
-        segments[0] = openpbr_film_segment(view.z, 0.0f, dielectric_filmed && base_critical <= view.z ? 1.0f : 0.0f,
-                                           metal_filmed ? 1.0f : 0.0f);
-        segment_count = 1;
+        cuts[0] = 2.0f;
+        cut_count = 1;
+    }
+    else if (lowest <= 0.0f)
+    {
+        // No critical cosine: two halves split at the lobe's mean cosine.
+        cuts[0] = openpbr_film_lobe_total(table).y;
+        cuts[1] = 2.0f;
+        cut_count = 2;
     }
     else
     {
-        const OpenPBR_FilmLobeTable table =
-            openpbr_film_lobe_table(view.z, sqrt(0.5f * (alpha.x * alpha.x + alpha.y * alpha.y)));
-        // Shares below the two critical cosines.
-        const vec2 below_base = base_critical > 0.0f ? openpbr_film_lobe_cumulative(table, base_critical) : vec2(0.0f);
-        const vec2 below_film =
-            film_critical > base_critical ? openpbr_film_lobe_cumulative(table, film_critical) : below_base;
-        // Total reflection at the base: the metal only.
-        if (metal_filmed && below_base.x > 1e-6f)
+        if (base_critical > 0.0f)
         {
-            segments[segment_count] =
-                openpbr_film_median_segment(table, 0.0f, below_base.x, thickness_um, film_offset, n_o, false, true);
-            ++segment_count;
+            cuts[cut_count] = base_critical;
+            ++cut_count;
         }
-        // The evanescent film between the two critical cosines: two halves of equal share at
-        // their medians (no fringes there; the halves follow the rise towards total reflection).
-        if (below_film.x - below_base.x > 1e-6f)
+        if (film_critical > base_critical)
         {
-            const float middle = 0.5f * (below_base.x + below_film.x);
-            segments[segment_count] = openpbr_film_median_segment(table, below_base.x, middle, thickness_um, film_offset,
-                                                                  n_o, dielectric_filmed, metal_filmed);
-            segments[segment_count + 1] = openpbr_film_median_segment(table, middle, below_film.x, thickness_um, film_offset,
-                                                                      n_o, dielectric_filmed, metal_filmed);
-            segment_count += 2;
+            // The evanescent film in two halves: at the middle cosine between the two critical
+            // cosines (or between 0 and the film's).
+            cuts[cut_count] = 0.5f * (base_critical + film_critical);
+            cuts[cut_count + 1] = film_critical;
+            cut_count += 2;
         }
-        // The propagating film above the higher critical cosine c*: cut where
-        // w = sqrt(c^2 - c*^2) crosses OPENPBR_FILM_ESTIMATE_CRITICAL_SEGMENTS - 1 thresholds spaced
-        // geometrically from OPENPBR_FILM_ESTIMATE_FIRST_CUT to OPENPBR_FILM_ESTIMATE_LAST_CUT, and
-        // at the median of the region's light, each segment at its mean cosine. Past c* the
-        // stack's quantities are smooth functions of w (n_o w is the film's or the base's n cos
-        // in it), not of c, and the reflectance falls from total reflection on the scale of w
-        // itself: cells even in c or in the lobe's share put that fall inside one cell (largest
-        // error of the dielectric's change 0.04 with two halves at their medians). The median
-        // keeps two segments in a near-mirror lobe that lies between two thresholds.
-        const float lowest = max(film_critical, base_critical);
-        if (lowest > 0.0f)
+        // Past c*: the thresholds in w, and the lobe's median where it lies past c*, in order.
+        float median = openpbr_film_lobe_quantile(table, 0.5f);
+        for (int cut = 0; cut + 1 < OPENPBR_FILM_ESTIMATE_CRITICAL_SEGMENTS; ++cut)
         {
-            const vec2 region_start = lowest == film_critical ? below_film : below_base;
-            const float median_cosine = openpbr_film_lobe_quantile(table, 0.5f * (region_start.x + 1.0f));
-            bool median_done = false;
-            vec2 start = region_start;
-            for (int cut = 0; cut <= OPENPBR_FILM_ESTIMATE_CRITICAL_SEGMENTS; ++cut)
+            const float step = OPENPBR_FILM_ESTIMATE_CRITICAL_SEGMENTS > 2
+                                   ? float(cut) / float(OPENPBR_FILM_ESTIMATE_CRITICAL_SEGMENTS - 2)
+                                   : 0.5f;
+            const float w = OPENPBR_FILM_ESTIMATE_FIRST_CUT *
+                            pow(OPENPBR_FILM_ESTIMATE_LAST_CUT / OPENPBR_FILM_ESTIMATE_FIRST_CUT, step);
+            const float threshold = sqrt(lowest * lowest + w * w);
+            if (median > lowest && median < threshold)
             {
-                float cut_cosine = 2.0f;  // the last segment ends above every cosine
-                if (cut + 1 < OPENPBR_FILM_ESTIMATE_CRITICAL_SEGMENTS)
-                {
-                    const float step = OPENPBR_FILM_ESTIMATE_CRITICAL_SEGMENTS > 2
-                                           ? float(cut) / float(OPENPBR_FILM_ESTIMATE_CRITICAL_SEGMENTS - 2)
-                                           : 0.5f;
-                    const float w = OPENPBR_FILM_ESTIMATE_FIRST_CUT *
-                                    pow(OPENPBR_FILM_ESTIMATE_LAST_CUT / OPENPBR_FILM_ESTIMATE_FIRST_CUT, step);
-                    cut_cosine = sqrt(lowest * lowest + w * w);
-                }
-                // The median cut, in its place among the thresholds (one pass more).
-                if (!median_done && median_cosine < cut_cosine)
-                {
-                    cut_cosine = median_cosine;
-                    median_done = true;
-                    --cut;
-                }
-                else if (cut == OPENPBR_FILM_ESTIMATE_CRITICAL_SEGMENTS)
-                {
-                    break;
-                }
-                const vec2 end =
-                    cut_cosine > 1.0f ? openpbr_film_lobe_total(table) : openpbr_film_lobe_cumulative(table, cut_cosine);
-                if (end.x - start.x > 1e-6f)
-                {
-                    segments[segment_count] = openpbr_film_mean_segment(table, start, end, thickness_um, film_offset, n_o,
-                                                                        dielectric_filmed, metal_filmed);
-                    ++segment_count;
-                }
-                start = end.x > start.x ? end : start;
+                cuts[cut_count] = median;
+                ++cut_count;
+                median = 0.0f;
             }
+            cuts[cut_count] = threshold;
+            ++cut_count;
         }
-        // No critical cosine: the whole lobe, split at its mean cosine.
-        if (lowest <= 0.0f)
+        if (median > lowest && median < 1.0f)
         {
-            const vec2 whole = openpbr_film_lobe_total(table);
-            const vec2 at_mean = openpbr_film_lobe_cumulative(table, whole.y);
-            segments[0] = openpbr_film_mean_segment(table, vec2(0.0f), at_mean, thickness_um, film_offset, n_o,
-                                                    dielectric_filmed, metal_filmed);
-            segments[1] = openpbr_film_mean_segment(table, at_mean, whole, thickness_um, film_offset, n_o, dielectric_filmed,
-                                                    metal_filmed);
-            segment_count = 2;
+            cuts[cut_count] = median;
+            ++cut_count;
         }
+        cuts[cut_count] = 2.0f;
+        ++cut_count;
     }
 
-    // One film evaluation per segment, both bases in each, at one call site.
-    vec3 dielectric_sum = vec3(0.0f);
-    vec3 metal_sum = vec3(0.0f);
-    for (int index = 0; index < segment_count; ++index)
+    // One cumulative look-up, one segment point and one film evaluation per segment, each at one
+    // call site, both bases in each evaluation.
+    vec2 start = vec2(0.0f);
+    for (int index = 0; index < cut_count; ++index)
     {
-        const OpenPBR_FilmSegment segment = segments[index];
-        const bool with_dielectric = segment.dielectric_share > 1e-6f;
-        const bool with_metal = segment.metal_share > 1e-6f;
-        if (!(with_dielectric || with_metal))
+        const float cut = cuts[index];
+        vec2 end = at_view ? vec2(1.0f, view.z) : openpbr_film_lobe_cumulative(table, cut);
+        end = end.x > start.x ? end : start;
+        const float share = end.x - start.x;
+        // Below the base's critical cosine the dielectric's change is 0 (total reflection, filmed
+        // or not): only the metal there.
+        const bool with_dielectric = dielectric_filmed && (at_view ? view.z >= base_critical : cut > base_critical);
+        if (share > 1e-6f && (with_dielectric || metal_filmed))
         {
-            continue;
+            // Segments at or below c* at their median (the evanescent film and the metal's part
+            // below the base's critical cosine), the others at their mean.
+            // (not "point": an HLSL keyword)
+            const vec2 where = at_view ? vec2(view.z, 0.0f)
+                                       : openpbr_film_segment_point(table, start, end, lowest > 0.0f && cut <= lowest,
+                                                                    thickness_um, film_offset, n_o);
+            const OpenPBR_FresnelPair pair =
+                openpbr_fresnel_evaluate_base_pair_spread(untinted, with_dielectric, metal, metal_filmed, where.x, where.y);
+            if (with_dielectric)
+            {
+                dielectric_sum += share * (pair.first - vec3(openpbr_fresnel_dielectric(where.x, dielectric.eta)));
+            }
+            if (metal_filmed)
+            {
+                metal_sum += share * pair.second;
+            }
         }
-        const OpenPBR_FresnelPair pair = openpbr_fresnel_evaluate_base_pair_spread(
-            untinted, with_dielectric, metal, with_metal, segment.cosine, segment.path_spread_um);
-        if (with_dielectric)
-        {
-            dielectric_sum +=
-                segment.dielectric_share * (pair.first - vec3(openpbr_fresnel_dielectric(segment.cosine, dielectric.eta)));
-        }
-        if (with_metal)
-        {
-            metal_sum += segment.metal_share * pair.second;
-        }
+        start = end;
     }
     OpenPBR_FresnelPair result;
     result.first = dielectric_sum;
