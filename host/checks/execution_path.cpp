@@ -7,17 +7,10 @@
 
 #include "host/checks/conformance.h"
 #include "host/checks/conformance_cpu_variants.h"
+#include "host/gpu/build_tools.h"
 #include "host/gpu/cuda_conformance.h"
 #include "host/gpu/vulkan_runner.h"
 #include "host/support/stopwatch.h"
-
-// Set by the build (targets/CMakeLists.txt): the repository root (targets/wgsl/) and node.
-#ifndef OPENPBR_COMPILE_SOURCE_DIR
-#define OPENPBR_COMPILE_SOURCE_DIR "."
-#endif
-#ifndef OPENPBR_COMPILE_NODE
-#define OPENPBR_COMPILE_NODE "node"
-#endif
 
 namespace openpbr::host {
 

@@ -12,19 +12,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "host/gpu/build_tools.h"
 #include "host/support/stopwatch.h"
-
-// Set by the build (targets/CMakeLists.txt): the repository root, node, and the native slangc
-// of the CMake cache variable OPENPBR_SLANGC (empty: node + targets/slangc.mjs).
-#ifndef OPENPBR_COMPILE_SOURCE_DIR
-#define OPENPBR_COMPILE_SOURCE_DIR "."
-#endif
-#ifndef OPENPBR_COMPILE_NODE
-#define OPENPBR_COMPILE_NODE "node"
-#endif
-#ifndef OPENPBR_COMPILE_SLANGC
-#define OPENPBR_COMPILE_SLANGC ""
-#endif
 
 extern char** environ;
 

@@ -31,7 +31,7 @@ using openpbr::host::StabilityReport;
 constexpr double max_mean_weight = 1.005;
 constexpr std::size_t default_cpu_samples_per_case = 200000;
 constexpr std::size_t gpu_samples_per_case = 10000;
-// The WebGPU paths (SwiftShader in CI) take fewer: 2000 per case keeps the corpus (183 cases,
+// The WebGPU paths (SwiftShader in CI) take fewer: 2000 per case keeps the corpus (187 cases,
 // about 0.37M queries) inside one batch of the stability runner (1.3M queries), so one Node
 // process and one pipeline build (SwiftShader: 40-65 s on the loaded 2-core machine, where
 // the dispatch itself ran at 20-50 us per query). The energy check's three standard errors
