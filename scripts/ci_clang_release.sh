@@ -26,6 +26,7 @@ tests=(
   "test_math:*"
   "test_thin_film:*"
   "test_film_estimate:*"
+  "test_film_table:*"
   "test_volume:*"
   "test_fuzz_lobe:*"
   "test_coat_frame:*"
