@@ -24,29 +24,33 @@ step_run "ctest" step ctest --test-dir "$build_dir" --output-on-failure --parall
 if [[ "${OPENPBR_SKIP_CONSUMERS:-0}" != 1 ]]; then
   step_run "ci_consumers" step "$repo_root/scripts/ci_consumers.sh" || failed+=(ci_consumers)
 fi
-if [[ "${OPENPBR_SKIP_FUZZ:-0}" != 1 ]]; then
-  step_run "ci_fuzz" step "$repo_root/scripts/ci_fuzz.sh" || failed+=(ci_fuzz)
-fi
-# The sanitizer and Clang Release steps run at the same time, each into its own log, printed
-# whole in this order: each ends with its test programs, whose longest (test_bsdf_basics) ran
-# alone for half a minute with the other core idle; now that core builds or tests the other
-# step. The same builds and tests; in the step table their wall times overlap.
-clang_steps=()
-[[ "${OPENPBR_SKIP_SANITIZERS:-0}" == 1 ]] || clang_steps+=(ci_sanitizers)
-[[ "${OPENPBR_SKIP_CLANG_RELEASE:-0}" == 1 ]] || clang_steps+=(ci_clang_release)
-clang_step_pids=()
-clang_step_logs=$(mktemp -d)
-for step in "${clang_steps[@]}"; do
-  step_run "$step" step "$repo_root/scripts/$step.sh" >"$clang_step_logs/$step.log" 2>&1 &
-  clang_step_pids+=($!)
+# The fuzzer, the sanitizer and the Clang Release steps run at the same time, each into its own
+# log, printed whole in this order. The fuzzer is one process on one core for 60 s, one after
+# another it left the other core idle for that minute; each Clang step ends with its test
+# programs, whose longest (test_bsdf_basics) ran alone for half a minute likewise. The Clang
+# steps run at a lower priority (nice 10) than the fuzzer, so that the fuzzer keeps a core of
+# its own: the number of inputs it tries in its 60 s is its power (docs/ci-time.md has the
+# inputs per second alone and beside them). The same builds, tests and fuzzing; in the step
+# table their wall times overlap.
+side_steps=()
+[[ "${OPENPBR_SKIP_FUZZ:-0}" == 1 ]] || side_steps+=(ci_fuzz)
+[[ "${OPENPBR_SKIP_SANITIZERS:-0}" == 1 ]] || side_steps+=(ci_sanitizers)
+[[ "${OPENPBR_SKIP_CLANG_RELEASE:-0}" == 1 ]] || side_steps+=(ci_clang_release)
+side_step_pids=()
+side_step_logs=$(mktemp -d)
+for step in "${side_steps[@]}"; do
+  priority=()
+  [[ "$step" == ci_fuzz ]] || priority=(nice -n 10)
+  step_run "$step" step "${priority[@]}" "$repo_root/scripts/$step.sh" >"$side_step_logs/$step.log" 2>&1 &
+  side_step_pids+=($!)
 done
-for index in "${!clang_steps[@]}"; do
+for index in "${!side_steps[@]}"; do
   step_status=0
-  wait "${clang_step_pids[$index]}" || step_status=$?
-  cat "$clang_step_logs/${clang_steps[$index]}.log"
-  ((step_status == 0)) || failed+=("${clang_steps[$index]}")
+  wait "${side_step_pids[$index]}" || step_status=$?
+  cat "$side_step_logs/${side_steps[$index]}.log"
+  ((step_status == 0)) || failed+=("${side_steps[$index]}")
 done
-rm -rf "$clang_step_logs"
+rm -rf "$side_step_logs"
 if [[ "${OPENPBR_SKIP_FORMAT:-0}" != 1 ]]; then
   step_run "format-check" step "$repo_root/scripts/format-check.sh" || failed+=(format-check)
 fi

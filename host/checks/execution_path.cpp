@@ -176,9 +176,9 @@ class VulkanPath final : public ExecutionPath
             }
             // One pipeline per toggle set the materials need; the first-dispatch time is that of
             // every set together, the steady-state time the sum over the sets.
-            const SpecializedConformanceRun specialized =
-                run_conformance_gpu_specialized(kernel_.name, *context, batch.queries, *batch.material_list,
-                                                shared_.settings.kernel_directory, std::nullopt, 3);
+            const SpecializedConformanceRun specialized = run_conformance_gpu_specialized(
+                kernel_.name, *context, batch.queries, *batch.material_list, shared_.settings.kernel_directory, std::nullopt,
+                shared_.settings.dispatch_repeats);
             run.results = specialized.results;
             timing.dispatch_ms = specialized.dispatch_ms;
             for (const SpecializedPipelineTiming& pipeline : specialized.pipelines)
@@ -189,11 +189,21 @@ class VulkanPath final : public ExecutionPath
         }
         else
         {
-            ConformanceDispatch dispatch = run_conformance_vulkan(kernel_.name, *context, batch.queries, batch.materials,
-                                                                  shared_.settings.kernel_directory);
+            // One pipeline for every batch of the path: llvmpipe compiles the kernel at a
+            // pipeline's first dispatch and keeps it, so a run of many batches (the stability
+            // corpus, the furnace's rows: 1.3M queries a batch) compiles it once, not per batch.
+            if (!pipeline_)
+            {
+                pipeline_.emplace(*context,
+                                  conformance_pipeline_description(kernel_.name, shared_.settings.kernel_directory));
+                run.pipeline_count = 1;
+            }
+            ConformanceDispatchSettings dispatch_settings;
+            dispatch_settings.texture_tables = kernel_.texture_tables;
+            ConformanceDispatch dispatch = dispatch_conformance_pipeline(
+                *pipeline_, batch.queries, batch.materials, shared_.settings.dispatch_repeats, dispatch_settings);
             run.results = std::move(dispatch.results);
             timing = dispatch.timing;
-            run.pipeline_count = 1;
         }
         run.wall_seconds = stopwatch.seconds();
         run.device = context->device_name();
@@ -211,6 +221,7 @@ class VulkanPath final : public ExecutionPath
   private:
     VulkanPathKernel kernel_;
     ExecutionPaths::Shared& shared_;
+    std::optional<ComputePipeline> pipeline_;  // built at the first batch
 };
 
 // A path whose kernel runs in another program that exchanges float32 files with this one
@@ -295,7 +306,8 @@ class WebGpuPath final : public ExecutionPath
         const Stopwatch stopwatch;
         const std::vector<ExternalPathResult> results = run_conformance_program(
             {OPENPBR_COMPILE_NODE, dispatcher().string(), "-path", kernel_.name, "-kernel", kernel_path().string(), "-entry",
-             kernel_.entry_point, "-swiftshader", swiftshader_vulkan_driver(), "-dir"},
+             kernel_.entry_point, "-swiftshader", swiftshader_vulkan_driver(), "-repeats",
+             std::to_string(shared_.settings.dispatch_repeats), "-dir"},
             {kernel_.name}, batch.queries, batch.materials);
         PathRun run = external_run(results.front(), stopwatch.seconds());
         // "... first dispatch 57 ms, ...": the dispatch that includes SwiftShader's compilation.

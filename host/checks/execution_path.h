@@ -40,6 +40,12 @@ struct ExecutionPathSettings
     // Vulkan paths: one pipeline per toggle set the batch's materials need (host/scene/features.h)
     // instead of the full pipeline; needs PathBatch::material_list.
     bool specialize = false;
+    // Vulkan and WebGPU paths: how many times each batch is dispatched. Every dispatch computes
+    // the same results (the last is read back); those after the first give the steady-state
+    // time that conformance and `openpbr bench gpu` report. 1 where only the results matter:
+    // the stability corpus and the furnace's GPU rows, whose batches lavapipe ran three times
+    // (docs/ci-time.md).
+    int dispatch_repeats = 3;
 };
 
 // One batch: queries (OPENPBR_QUERY_FLOATS each) over packed materials.

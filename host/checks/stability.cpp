@@ -737,6 +737,8 @@ StabilityReport run_stability(const std::vector<StabilityCase>& cases, const Sta
     ExecutionPathSettings settings;
     settings.kernel_directory = options.kernel_directory;
     settings.validation = options.validation;
+    // The report needs each batch's results, not its steady-state dispatch time.
+    settings.dispatch_repeats = 1;
     ExecutionPaths paths(settings);
     for (const std::string& name : known_gpu)
     {

@@ -3,7 +3,7 @@
 // channel) anywhere. Each path is its own test so that ctest, which runs every test in its own
 // process, computes each path once: the CPU with 200000 samples per case, GPU paths (lavapipe
 // on machines without a GPU) with 10000, a prefix of the CPU's query stream (lavapipe runs at
-// about 1M queries/s on two cores and the runner dispatches each batch three times). The energy bound allows three standard
+// about 1M queries/s on two cores). The energy bound allows three standard
 // errors of the mean on top of 1.005 (for deterministic delta cases the standard error is 0).
 #include <gtest/gtest.h>
 
