@@ -230,8 +230,17 @@ nlohmann::json run_gpu_bench(const GpuBenchOptions& options)
                        "WebGPU timestamp queries around the pass, median after the first";
     ExecutionPaths paths(ExecutionPathSettings{options.kernel_directory, false, false});
     std::vector<PathState> states;
+    const std::vector<std::string> device_paths = execution_path_names(false);
+    const std::vector<std::string> every_path = execution_path_names(true);
     for (const std::string& name : options.paths)
     {
+        if (std::find(device_paths.begin(), device_paths.end(), name) == device_paths.end() &&
+            std::find(every_path.begin(), every_path.end(), name) != every_path.end())
+        {
+            // The CPU paths have no device time; benchmark_bsdf times the CPU build.
+            throw std::invalid_argument("bench gpu times device kernels; '" + name +
+                                        "' is a CPU path (benchmarks/benchmark_bsdf times the CPU build)");
+        }
         PathState state;
         state.path = &paths.path(name);
         state.skipped = state.path->unavailable_reason();

@@ -136,7 +136,7 @@ INSTANTIATE_TEST_SUITE_P(BenchGpu, BenchGpuSet, ::testing::Values(false, true),
 // buffer path does (before, the bench bound no tables for it), and each path of a report is
 // either timed on its device or reported with the reason it cannot run here: the CUDA paths,
 // built or not, have no specialized kernel, which the report says instead of timing the full
-// one under that name.
+// one under that name. An unknown path and a CPU path (no device time) are refused.
 TEST(BenchGpu, EveryPathIsTimedOrReportedWithItsReason)
 {
     std::string error;
@@ -171,6 +171,8 @@ TEST(BenchGpu, EveryPathIsTimedOrReportedWithItsReason)
     }
     EXPECT_NE(openpbr::host::gpu_bench_text(report).find("cuda device: "), std::string::npos);
     options.paths = {"no-such-path"};
+    EXPECT_THROW(openpbr::host::run_gpu_bench(options), std::invalid_argument);
+    options.paths = {"cpu-fma"};  // no device time to report
     EXPECT_THROW(openpbr::host::run_gpu_bench(options), std::invalid_argument);
 }
 
