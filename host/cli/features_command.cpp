@@ -157,6 +157,9 @@ CLI::App* add_features_subcommand(CLI::App& parent, const CommandContext& contex
                      "execution paths in report order: Vulkan (slang-spirv, glsl-spirv, ...), CUDA (cuda, slang-cuda), "
                      "WebGPU (slang-wgsl, wgsl-library: one pipeline build per batch, seconds each on SwiftShader)")
         ->capture_default_str();
+    gpu_command->add_option("--entries", gpu->options.entries,
+                            "only these entries: material classes by toggle set (base, coat+metal, ...) or, with "
+                            "--features, variants (Default, Only/coat, ...)");
     gpu_command->add_flag("--no-vulkan", gpu->no_vulkan, "leave the Vulkan paths out of --paths");
     gpu_command->add_flag("--no-cuda", gpu->no_cuda, "leave the CUDA paths out of --paths");
     gpu_command->add_flag("--features", gpu->options.features,

@@ -39,7 +39,7 @@ struct BenchClass
     std::vector<Material> members;
 };
 
-std::vector<BenchClass> bench_classes(const GpuBenchOptions& options)
+std::vector<BenchClass> every_bench_class(const GpuBenchOptions& options)
 {
     std::vector<BenchClass> bench;
     if (options.features)
@@ -64,6 +64,45 @@ std::vector<BenchClass> bench_classes(const GpuBenchOptions& options)
         bench.push_back({std::string(), mask, members});
     }
     return bench;
+}
+
+// An entry's name: a feature variant's ("Default"), a material class's toggle set ("coat+metal").
+std::string entry_label(const BenchClass& bench_class)
+{
+    return bench_class.variant.empty() ? feature_set_label(bench_class.mask) : bench_class.variant;
+}
+
+// The entries of the report: every one, or those options.entries names (in report order); an
+// unknown name is an error naming the known ones.
+std::vector<BenchClass> bench_classes(const GpuBenchOptions& options)
+{
+    const std::vector<BenchClass> every = every_bench_class(options);
+    if (options.entries.empty())
+    {
+        return every;
+    }
+    std::vector<BenchClass> chosen;
+    for (const BenchClass& bench_class : every)
+    {
+        if (std::find(options.entries.begin(), options.entries.end(), entry_label(bench_class)) != options.entries.end())
+        {
+            chosen.push_back(bench_class);
+        }
+    }
+    for (const std::string& name : options.entries)
+    {
+        if (std::none_of(every.begin(), every.end(),
+                         [&](const BenchClass& bench_class) { return entry_label(bench_class) == name; }))
+        {
+            std::string known;
+            for (const BenchClass& bench_class : every)
+            {
+                known += (known.empty() ? "" : ", ") + entry_label(bench_class);
+            }
+            throw std::invalid_argument("no entry '" + name + "' (known: " + known + ")");
+        }
+    }
+    return chosen;
 }
 
 // ns per query of one variant, path, pipeline and operation; NaN where it has no device time.

@@ -58,6 +58,10 @@ struct GpuBenchOptions
     // machine (a slow spell then falls on every entry, not on those measured during it).
     int rounds = 1;
     bool features = false;  // true: the feature variants instead of the material classes
+    // Only these entries, by name: a material class's toggle set ("base", "coat+metal") or a
+    // feature variant ("Default", "Only/coat"); empty: every entry. E.g. for the WebGPU paths,
+    // whose every batch builds a pipeline.
+    std::vector<std::string> entries;
 };
 
 nlohmann::json run_gpu_bench(const GpuBenchOptions& options);

@@ -136,7 +136,8 @@ INSTANTIATE_TEST_SUITE_P(BenchGpu, BenchGpuSet, ::testing::Values(false, true),
 // buffer path does (before, the bench bound no tables for it), and each path of a report is
 // either timed on its device or reported with the reason it cannot run here: the CUDA paths,
 // built or not, have no specialized kernel, which the report says instead of timing the full
-// one under that name. An unknown path and a CPU path (no device time) are refused.
+// one under that name. --entries keeps the entries named, in report order. An unknown path or
+// entry and a CPU path (no device time) are refused.
 TEST(BenchGpu, EveryPathIsTimedOrReportedWithItsReason)
 {
     std::string error;
@@ -151,7 +152,11 @@ TEST(BenchGpu, EveryPathIsTimedOrReportedWithItsReason)
     options.queries = 128;
     options.repeats = 2;
     options.paths = {"slang-spirv-texture", "cuda"};
+    options.entries = {"metal", "base"};  // report order: base first
     const nlohmann::json report = openpbr::host::run_gpu_bench(options);
+    ASSERT_EQ(report["classes"].size(), 2u);
+    EXPECT_EQ(report["classes"][0]["toggles"].get<std::string>(), "base");
+    EXPECT_EQ(report["classes"][1]["toggles"].get<std::string>(), "metal");
     ASSERT_EQ(report["paths"].size(), 2u);
     EXPECT_EQ(report["paths"][0]["device"].get<std::string>(), context->device_name());
     expect_positive_finite_rates(report, "slang-spirv-texture");
@@ -170,6 +175,9 @@ TEST(BenchGpu, EveryPathIsTimedOrReportedWithItsReason)
         EXPECT_NE(cuda["specialized_skipped"].get<std::string>().find("every toggle on"), std::string::npos);
     }
     EXPECT_NE(openpbr::host::gpu_bench_text(report).find("cuda device: "), std::string::npos);
+    options.entries = {"no-such-entry"};
+    EXPECT_THROW(openpbr::host::run_gpu_bench(options), std::invalid_argument);
+    options.entries.clear();
     options.paths = {"no-such-path"};
     EXPECT_THROW(openpbr::host::run_gpu_bench(options), std::invalid_argument);
     options.paths = {"cpu-fma"};  // no device time to report
