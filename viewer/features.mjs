@@ -2,7 +2,9 @@
 // and the Slang defines that specialize a kernel to a toggle set when its WGSL is generated:
 // compile-time constants (-DOPENPBR_SPECIALIZATION_CONSTANTS=0, -DOPENPBR_FEATURE_<NAME>=0 for
 // each toggle off), because SwiftShader compiles a WGSL `override` only after building the whole
-// kernel, and the full render kernel does not build there (toolchain-notes.md).
+// kernel, and the full render kernel does not build there (toolchain-notes.md). The C++ host's
+// `openpbr compile --specialize` passes the same list (host/scene/features.h,
+// specialization_defines; Targets.SpecializationDefinesAreTheViewers checks that they agree).
 import fs from 'node:fs';
 
 import { codeOnly } from '../targets/source_text.mjs';

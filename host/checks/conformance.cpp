@@ -207,18 +207,6 @@ ConformanceDispatch dispatch_conformance_pipeline(ComputePipeline& pipeline, con
     return {std::move(batch.results), batch.timing};
 }
 
-ConformanceDispatch run_conformance_vulkan(const std::string& path_name, VulkanContext& context,
-                                           const std::vector<float>& queries, const std::vector<float>& materials,
-                                           const std::string& kernel_directory)
-{
-    const VulkanPathKernel& path = vulkan_path_kernel(path_name);
-    ComputePipeline pipeline(context, conformance_pipeline_description(path, kernel_directory));
-    ConformanceDispatchSettings settings;
-    settings.texture_tables = path.texture_tables;
-    GpuBatchResult batch = dispatch_conformance(pipeline, queries, materials, 3, settings);
-    return {std::move(batch.results), batch.timing};
-}
-
 namespace {
 
 // The rate of a path's steady-state dispatch where it times one (Vulkan), else of its device
@@ -521,13 +509,6 @@ void compare_with_cpu(ConformancePathResult& result, const std::vector<float>& q
 }
 
 }  // namespace
-
-std::vector<float> run_conformance_gpu(const std::string& path_name, VulkanContext& context,
-                                       const std::vector<float>& queries, const std::vector<float>& materials,
-                                       const std::string& kernel_directory)
-{
-    return run_conformance_vulkan(path_name, context, queries, materials, kernel_directory).results;
-}
 
 SpecializedConformanceRun run_conformance_gpu_specialized(const std::string& path_name, VulkanContext& context,
                                                           const std::vector<float>& queries,

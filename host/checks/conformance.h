@@ -171,12 +171,6 @@ std::vector<float> make_queries(std::size_t query_count, std::size_t material_co
 // The CPU build of the conformance kernel; results as laid out in openpbr_conformance_kernel.h.
 std::vector<float> run_conformance_cpu(const std::vector<float>& queries, const std::vector<float>& materials);
 
-// One GPU path on a query batch (results as the CPU runner lays them out). Throws when the
-// path is unknown or its kernel cannot be loaded.
-std::vector<float> run_conformance_gpu(const std::string& path_name, VulkanContext& context,
-                                       const std::vector<float>& queries, const std::vector<float>& materials,
-                                       const std::string& kernel_directory);
-
 // How a conformance kernel is dispatched: the kernel's mode (OPENPBR_CONFORMANCE_MODE_* of
 // targets/kernels/openpbr_conformance_kernel.h, e.g. 1 = prepare + eval only; 0 = everything,
 // as conformance runs) and where its buffers live (DispatchRequest::device_local, e.g. true for
@@ -203,12 +197,8 @@ struct ConformanceDispatch
     DispatchTiming timing;
 };
 
-// One Vulkan path on a query batch with its full pipeline, three dispatches (the steady-state
-// time from the second on): results and timing. Throws when the path is unknown or its kernel
-// cannot be loaded.
-ConformanceDispatch run_conformance_vulkan(const std::string& path_name, VulkanContext& context,
-                                           const std::vector<float>& queries, const std::vector<float>& materials,
-                                           const std::string& kernel_directory);
+// A Vulkan path runs a batch this way (host/checks/execution_path.cpp), on a pipeline of
+// conformance_pipeline_description: `repeats` dispatches, the steady-state time from the second on.
 ConformanceDispatch dispatch_conformance_pipeline(ComputePipeline& pipeline, const std::vector<float>& queries,
                                                   const std::vector<float>& materials, int repeats,
                                                   const ConformanceDispatchSettings& settings);

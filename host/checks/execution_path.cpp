@@ -10,6 +10,7 @@
 #include "host/gpu/build_tools.h"
 #include "host/gpu/cuda_conformance.h"
 #include "host/gpu/vulkan_runner.h"
+#include "host/scene/features.h"
 #include "host/support/stopwatch.h"
 
 namespace openpbr::host {
@@ -52,6 +53,27 @@ const WgslPathKernel wgsl_kernels[] = {
 };
 
 std::size_t query_count_of(const PathBatch& batch) { return batch.queries.size() / conformance_query_floats; }
+
+// The paths with one kernel and every toggle on (the CPU builds, the CUDA program) cannot run a
+// batch on another toggle set: they say so rather than run the full kernel under its name.
+void require_full_toggle_set(const PathBatch& batch, const std::string& name, const char* why)
+{
+    if (batch.feature_mask && *batch.feature_mask != full_feature_mask())
+    {
+        throw PathUnavailable(name + " runs no kernel specialized to " + feature_set_label(*batch.feature_mask) + " (" +
+                              why + ")");
+    }
+}
+
+// A batch on one toggle set refuses a material that needs a toggle the set lacks (it would run
+// without the effect), as every specialized pipeline does (host/scene/features.h).
+void check_batch_toggle_set(const PathBatch& batch)
+{
+    if (batch.feature_mask && batch.material_list)
+    {
+        check_pipeline_supports(*batch.material_list, *batch.feature_mask);
+    }
+}
 
 }  // namespace
 
@@ -118,6 +140,7 @@ class CpuVariantPath final : public ExecutionPath
     std::string unavailable_reason() override { return conformance_cpu_fma_unavailable_reason(); }
     PathRun run(const PathBatch& batch) override
     {
+        require_full_toggle_set(batch, name_, "a CPU build with every toggle on");
         PathRun run;
         run.device = description();
         const Stopwatch stopwatch;
@@ -141,6 +164,7 @@ class CpuUlpPath final : public ExecutionPath
     std::string unavailable_reason() override { return ""; }
     PathRun run(const PathBatch& batch) override
     {
+        require_full_toggle_set(batch, name(), "the CPU build with every toggle on");
         PathRun run;
         run.device = description();
         const Stopwatch stopwatch;
@@ -165,10 +189,36 @@ class VulkanPath final : public ExecutionPath
             throw PathUnavailable(shared_.vulkan_error);
         }
         context->clear_validation_messages();
+        check_batch_toggle_set(batch);
         const Stopwatch stopwatch;
         PathRun run;
         DispatchTiming timing;
-        if (shared_.settings.specialize)
+        ConformanceDispatchSettings dispatch_settings;
+        dispatch_settings.mode = batch.mode;
+        dispatch_settings.device_local = batch.device_local;
+        dispatch_settings.texture_tables = kernel_.texture_tables;
+        if (batch.feature_mask)
+        {
+            // One pipeline of the given toggle set, built once and kept for the path's next
+            // batches (bench gpu: every operation and round on the same pipelines).
+            if (!pipelines_)
+            {
+                pipelines_.emplace(*context,
+                                   conformance_pipeline_description(kernel_.name, shared_.settings.kernel_directory));
+            }
+            const std::size_t builds_before = pipelines_->build_count();
+            ComputePipeline& pipeline = pipelines_->pipeline(*batch.feature_mask);
+            ConformanceDispatch dispatch =
+                dispatch_conformance_pipeline(pipeline, batch.queries, batch.materials, batch.repeats, dispatch_settings);
+            run.results = std::move(dispatch.results);
+            timing = dispatch.timing;
+            run.pipeline_count = pipelines_->build_count() - builds_before;
+            for (const PipelineStatistic& statistic : pipeline.statistics())
+            {
+                run.pipeline_statistics[statistic.name] = statistic.value;
+            }
+        }
+        else if (shared_.settings.specialize)
         {
             if (!batch.material_list)
             {
@@ -178,9 +228,10 @@ class VulkanPath final : public ExecutionPath
             // every set together, the steady-state time the sum over the sets.
             const SpecializedConformanceRun specialized = run_conformance_gpu_specialized(
                 kernel_.name, *context, batch.queries, *batch.material_list, shared_.settings.kernel_directory, std::nullopt,
-                shared_.settings.dispatch_repeats);
+                batch.repeats, dispatch_settings);
             run.results = specialized.results;
             timing.dispatch_ms = specialized.dispatch_ms;
+            timing.device_dispatch_ms = specialized.device_dispatch_ms;
             for (const SpecializedPipelineTiming& pipeline : specialized.pipelines)
             {
                 timing.first_dispatch_ms += pipeline.first_dispatch_ms;
@@ -198,10 +249,8 @@ class VulkanPath final : public ExecutionPath
                                   conformance_pipeline_description(kernel_.name, shared_.settings.kernel_directory));
                 run.pipeline_count = 1;
             }
-            ConformanceDispatchSettings dispatch_settings;
-            dispatch_settings.texture_tables = kernel_.texture_tables;
-            ConformanceDispatch dispatch = dispatch_conformance_pipeline(
-                *pipeline_, batch.queries, batch.materials, shared_.settings.dispatch_repeats, dispatch_settings);
+            ConformanceDispatch dispatch =
+                dispatch_conformance_pipeline(*pipeline_, batch.queries, batch.materials, batch.repeats, dispatch_settings);
             run.results = std::move(dispatch.results);
             timing = dispatch.timing;
         }
@@ -222,6 +271,7 @@ class VulkanPath final : public ExecutionPath
     VulkanPathKernel kernel_;
     ExecutionPaths::Shared& shared_;
     std::optional<ComputePipeline> pipeline_;  // built at the first batch
+    std::optional<SpecializedPipelineCache> pipelines_;  // the batches with a feature_mask
 };
 
 // A path whose kernel runs in another program that exchanges float32 files with this one
@@ -271,6 +321,7 @@ class CudaPath final : public ExecutionPath
     }
     PathRun run(const PathBatch& batch) override
     {
+        require_full_toggle_set(batch, name_, "the CUDA program's one kernel has every toggle on");
         const Stopwatch stopwatch;
         const ExternalPathResult& external = shared_.cuda_result(name_, batch);
         return external_run(external, stopwatch.seconds());
@@ -303,12 +354,38 @@ class WebGpuPath final : public ExecutionPath
         {
             throw PathUnavailable(reason);
         }
+        check_batch_toggle_set(batch);
+        std::vector<std::string> command = {OPENPBR_COMPILE_NODE,
+                                            dispatcher().string(),
+                                            "-path",
+                                            kernel_.name,
+                                            "-kernel",
+                                            kernel_path().string(),
+                                            "-entry",
+                                            kernel_.entry_point,
+                                            "-swiftshader",
+                                            swiftshader_vulkan_driver(),
+                                            "-mode",
+                                            std::to_string(batch.mode),
+                                            "-repeats",
+                                            std::to_string(batch.repeats)};
+        if (batch.feature_mask)
+        {
+            // The toggles as the kernel's `override` constants, set at pipeline creation: each
+            // one outside the set false, by its @id (the legacy aliases stay on, as in
+            // specialization_constants).
+            for (const FeatureToggle& toggle : feature_toggles())
+            {
+                if ((*batch.feature_mask & toggle.bit) == 0)
+                {
+                    command.insert(command.end(), {"-constant", std::to_string(toggle.constant_id) + "=false"});
+                }
+            }
+        }
+        command.push_back("-dir");
         const Stopwatch stopwatch;
-        const std::vector<ExternalPathResult> results = run_conformance_program(
-            {OPENPBR_COMPILE_NODE, dispatcher().string(), "-path", kernel_.name, "-kernel", kernel_path().string(), "-entry",
-             kernel_.entry_point, "-swiftshader", swiftshader_vulkan_driver(), "-repeats",
-             std::to_string(shared_.settings.dispatch_repeats), "-dir"},
-            {kernel_.name}, batch.queries, batch.materials);
+        const std::vector<ExternalPathResult> results =
+            run_conformance_program(command, {kernel_.name}, batch.queries, batch.materials);
         PathRun run = external_run(results.front(), stopwatch.seconds());
         // "... first dispatch 57 ms, ...": the dispatch that includes SwiftShader's compilation.
         static const std::regex first_dispatch("first dispatch ([0-9.]+) ms");

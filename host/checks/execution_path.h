@@ -14,6 +14,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <map>
 #include <memory>
 #include <optional>
@@ -40,21 +41,42 @@ struct ExecutionPathSettings
     // Vulkan paths: one pipeline per toggle set the batch's materials need (host/scene/features.h)
     // instead of the full pipeline; needs PathBatch::material_list.
     bool specialize = false;
-    // Vulkan and WebGPU paths: how many times each batch is dispatched. Every dispatch computes
-    // the same results (the last is read back); those after the first give the steady-state
-    // time that conformance and `openpbr bench gpu` report. 1 where only the results matter:
-    // the stability corpus and the furnace's GPU rows, whose batches lavapipe ran three times
-    // (docs/ci-time.md).
-    int dispatch_repeats = 3;
 };
 
-// One batch: queries (OPENPBR_QUERY_FLOATS each) over packed materials.
+// One batch: queries (OPENPBR_QUERY_FLOATS each) over packed materials. The defaults are what
+// conformance runs; `openpbr bench gpu` times one operation at a time on a given toggle set.
 struct PathBatch
 {
+    // A constructor rather than aggregate initialization: callers name the batch and set the
+    // rest by name (-Wmissing-field-initializers).
+    PathBatch(const std::vector<float>& batch_queries, const std::vector<float>& batch_materials,
+              const std::vector<Material>* batch_material_list = nullptr)
+        : queries(batch_queries), materials(batch_materials), material_list(batch_material_list)
+    {
+    }
+
     const std::vector<float>& queries;
     const std::vector<float>& materials;  // pack_materials(...)
     // The materials unpacked, for specialized runs; may be null otherwise.
     const std::vector<Material>* material_list = nullptr;
+    // The kernel's mode (OPENPBR_CONFORMANCE_MODE_* of targets/kernels/openpbr_conformance_kernel.h):
+    // 0 every operation, 1 prepare + eval, 2 prepare + sample, 3 prepare + pdf; only that
+    // operation's result slots are written. The CPU and CUDA paths run every operation whatever
+    // the mode (the CUDA program times each on its own: PathRun::device_ns_per_operation).
+    std::uint32_t mode = 0;
+    // One pipeline for the whole batch with this toggle set (OPENPBR_FEATURE_BIT_*,
+    // host/scene/features.h), kept by the path for the next batch with the same set: Vulkan as
+    // specialization constants, WebGPU as the kernel's `override` constants set at pipeline
+    // creation. Unset: ExecutionPathSettings::specialize decides. A path that has no such form
+    // (CPU, CUDA: one kernel, every toggle on) throws PathUnavailable for any set but the full one.
+    std::optional<std::uint32_t> feature_mask;
+    // Vulkan and WebGPU paths: how many times the batch is dispatched. Every dispatch computes the
+    // same results (the last is read back); those after the first give the steady-state time
+    // (the median from the second on) that conformance and `openpbr bench gpu` report. 1 where
+    // only the results matter: the stability corpus and the furnace's GPU rows, whose batches
+    // lavapipe ran three times (docs/ci-time.md).
+    int repeats = 3;
+    bool device_local = false;  // Vulkan: buffers in device-local memory, uploaded once (timings)
 };
 
 // What a path returns for a batch.
@@ -72,6 +94,9 @@ struct PathRun
     // "all", "eval", "sample", "pdf"), ns per query.
     std::map<std::string, double> device_ns_per_operation;
     std::size_t pipeline_count = 0;  // pipelines built for the batch (0 on the CPU)
+    // The driver's statistics of the pipeline that ran the batch (Vulkan, where the driver has
+    // VK_KHR_pipeline_executable_properties), by name, after its dispatch.
+    std::map<std::string, double> pipeline_statistics;
     std::vector<std::string> validation_messages;
 };
 

@@ -737,8 +737,6 @@ StabilityReport run_stability(const std::vector<StabilityCase>& cases, const Sta
     ExecutionPathSettings settings;
     settings.kernel_directory = options.kernel_directory;
     settings.validation = options.validation;
-    // The report needs each batch's results, not its steady-state dispatch time.
-    settings.dispatch_repeats = 1;
     ExecutionPaths paths(settings);
     for (const std::string& name : known_gpu)
     {
@@ -751,7 +749,10 @@ StabilityReport run_stability(const std::vector<StabilityCase>& cases, const Sta
         std::size_t validation_messages = 0;
         const Executor execute = [&path, &device, &validation_messages](const std::vector<float>& queries,
                                                                         const std::vector<float>& packed) {
-            PathRun run = path.run(PathBatch{queries, packed});
+            PathBatch batch{queries, packed};
+            // The report needs each batch's results, not its steady-state dispatch time.
+            batch.repeats = 1;
+            PathRun run = path.run(batch);
             device = run.device;
             validation_messages += run.validation_messages.size();
             return std::move(run.results);

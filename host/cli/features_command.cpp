@@ -3,12 +3,14 @@
 // `openpbr bench gpu` (timings, no pass/fail).
 #include "host/cli/command.h"
 
+#include <algorithm>
 #include <fstream>
 #include <iostream>
 #include <memory>
 #include <stdexcept>
 #include <vector>
 
+#include "host/checks/execution_path.h"
 #include "host/studies/bench_gpu.h"
 #include "host/studies/bench_specialization.h"
 #include "host/scene/features.h"
@@ -136,7 +138,8 @@ CLI::App* add_features_subcommand(CLI::App& parent, const CommandContext& contex
     };
     auto gpu = std::make_shared<GpuBenchSettings>();
     CLI::App* gpu_command = bench_command->add_subcommand(
-        "gpu", "device-timed throughput of prepare+eval, sample, pdf per material class (Vulkan timestamps, CUDA events)");
+        "gpu", "device-timed throughput of prepare+eval, sample, pdf per material class and execution path (Vulkan "
+               "timestamps, CUDA events, WebGPU timestamp queries)");
     gpu_command->add_option("--json", gpu->json, "write the report as JSON");
     gpu_command->add_option("--queries", gpu->options.queries, "queries per class and kernel (e.g. 4096 on lavapipe)")
         ->capture_default_str()
@@ -149,10 +152,16 @@ CLI::App* add_features_subcommand(CLI::App& parent, const CommandContext& contex
                      "passes over every entry, median of the passes (e.g. 6 on a shared machine)")
         ->capture_default_str()
         ->check(CLI::Range(1, 100));
-    gpu_command->add_option("--path", gpu->options.path, "Vulkan path, e.g. slang-spirv or glsl-spirv")
+    gpu_command
+        ->add_option("--paths", gpu->options.paths,
+                     "execution paths in report order: Vulkan (slang-spirv, glsl-spirv, ...), CUDA (cuda, slang-cuda), "
+                     "WebGPU (slang-wgsl, wgsl-library: one pipeline build per batch, seconds each on SwiftShader)")
         ->capture_default_str();
-    gpu_command->add_flag("--no-vulkan", gpu->no_vulkan, "skip Vulkan");
-    gpu_command->add_flag("--no-cuda", gpu->no_cuda, "skip the CUDA program");
+    gpu_command->add_option("--entries", gpu->options.entries,
+                            "only these entries: material classes by toggle set (base, coat+metal, ...) or, with "
+                            "--features, variants (Default, Only/coat, ...)");
+    gpu_command->add_flag("--no-vulkan", gpu->no_vulkan, "leave the Vulkan paths out of --paths");
+    gpu_command->add_flag("--no-cuda", gpu->no_cuda, "leave the CUDA paths out of --paths");
     gpu_command->add_flag("--features", gpu->options.features,
                           "per feature variant (Default, EveryLobe, Only/<feature>, Without/<feature>) instead of "
                           "per material class: the per-feature cost table of docs/performance.md");
@@ -161,8 +170,14 @@ CLI::App* add_features_subcommand(CLI::App& parent, const CommandContext& contex
             [&]() {
                 gpu->options.materials_directory = context.materials_directory;
                 gpu->options.kernel_directory = context.kernel_directory;
-                gpu->options.vulkan = !gpu->no_vulkan;
-                gpu->options.cuda = !gpu->no_cuda;
+                const std::vector<std::string> vulkan = vulkan_path_names();
+                const std::vector<std::string>::iterator kept =
+                    std::remove_if(gpu->options.paths.begin(), gpu->options.paths.end(), [&](const std::string& name) {
+                        const bool is_vulkan = std::find(vulkan.begin(), vulkan.end(), name) != vulkan.end();
+                        const bool is_cuda = name == "cuda" || name == "slang-cuda";
+                        return (gpu->no_vulkan && is_vulkan) || (gpu->no_cuda && is_cuda);
+                    });
+                gpu->options.paths.erase(kept, gpu->options.paths.end());
                 const nlohmann::json report = run_gpu_bench(gpu->options);
                 std::cout << gpu_bench_text(report);
                 if (!gpu->json.empty())

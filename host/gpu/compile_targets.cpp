@@ -13,6 +13,7 @@
 #include <stdexcept>
 
 #include "host/gpu/build_tools.h"
+#include "host/scene/features.h"
 #include "host/support/stopwatch.h"
 
 extern char** environ;
@@ -88,6 +89,21 @@ double run_command(const std::vector<std::string>& arguments)
     return stopwatch.seconds();
 }
 
+// "-D NAME=0" arguments (Slang and the library generators take the same form) folding the
+// options' toggle set; none without one.
+std::vector<std::string> toggle_defines(const CompileTargetsOptions& options)
+{
+    std::vector<std::string> arguments;
+    if (options.feature_mask)
+    {
+        for (const std::string& define : specialization_defines(*options.feature_mask))
+        {
+            arguments.insert(arguments.end(), {"-D", define});
+        }
+    }
+    return arguments;
+}
+
 std::vector<std::string> slang_command(const CompileTargetsOptions& options, const std::string& target)
 {
     std::vector<std::string> command =
@@ -96,10 +112,15 @@ std::vector<std::string> slang_command(const CompileTargetsOptions& options, con
                                        (fs::path(options.source_directory) / "targets" / "slangc.mjs").string(), "-q"}
             : std::vector<std::string>{options.slangc};
     command.insert(command.end(), {"-target", target});
+    if (options.feature_mask)
+    {
+        const std::vector<std::string> defines = toggle_defines(options);
+        command.insert(command.end(), defines.begin(), defines.end());
+    }
     // Feature toggles (slang/openpbr_features.h): Slang turns specialization constants into
     // uniforms for HLSL and CUDA, so those outputs take compile-time permutations (SPIR-V keeps
     // them, Metal gets function constants).
-    if (target == "hlsl" || target == "cuda")
+    else if (target == "hlsl" || target == "cuda")
     {
         command.insert(command.end(), {"-D", "OPENPBR_SPECIALIZATION_CONSTANTS=0"});
     }
@@ -196,25 +217,41 @@ std::vector<CompiledFile> compile_targets(const CompileTargetsOptions& options)
                                          render_out.string(), (source / "targets" / "kernels" / "render.slang").string()});
             files.push_back(record(target, "render kernel (Slang)", render_out, run_command(render)));
             const fs::path generator = source / "targets" / "wgsl" / "generate_wgsl.mjs";
+            const std::vector<std::string> defines = toggle_defines(options);
             const fs::path library_out = directory / "openpbr.wgsl";
-            files.push_back(record(
-                target, "WGSL library (Slang module, plain names)", library_out,
-                run_command({options.node, generator.string(), "-I", slang_dir.string(), "-o", library_out.string()})));
+            std::vector<std::string> library = {options.node, generator.string(), "-I", slang_dir.string()};
+            library.insert(library.end(), defines.begin(), defines.end());
+            library.insert(library.end(), {"-o", library_out.string()});
+            files.push_back(record(target, "WGSL library (Slang module, plain names)", library_out, run_command(library)));
+            // The conformance kernel over the library, as the build makes path wgsl-library's
+            // (materials at binding 3, where every conformance kernel has them).
+            const fs::path library_kernel_out = directory / "conformance.library.wgsl";
+            std::vector<std::string> library_kernel = {
+                options.node, generator.string(), "-I", slang_dir.string(), "-D", "OPENPBR_WGSL_MATERIAL_BINDING=3"};
+            library_kernel.insert(library_kernel.end(), defines.begin(), defines.end());
+            library_kernel.insert(
+                library_kernel.end(),
+                {"-append", (source / "targets" / "wgsl" / "conformance.wgsl").string(), "-o", library_kernel_out.string()});
+            files.push_back(
+                record(target, "conformance kernel over the WGSL library", library_kernel_out, run_command(library_kernel)));
         }
         if (target == "hlsl")
         {
             const fs::path generator = source / "targets" / "hlsl" / "generate_hlsl.mjs";
             const fs::path library_in = source / "targets" / "hlsl" / "openpbr.hlsl.in";
             const fs::path library_out = directory / "openpbr.hlsl";
-            files.push_back(record(target, "HLSL library (headers, flattened)", library_out,
-                                   run_command({options.node, generator.string(), "-preset", "hlsl", "-I",
-                                                slang_dir.string(), "-o", library_out.string(), library_in.string()})));
+            const std::vector<std::string> defines = toggle_defines(options);
+            std::vector<std::string> library = {options.node, generator.string(), "-preset", "hlsl",
+                                                "-I",         slang_dir.string()};
+            library.insert(library.end(), defines.begin(), defines.end());
+            library.insert(library.end(), {"-o", library_out.string(), library_in.string()});
+            files.push_back(record(target, "HLSL library (headers, flattened)", library_out, run_command(library)));
             const fs::path body_out = directory / "openpbr_conformance_kernel.hlsl";
-            files.push_back(
-                record(target, "conformance kernel body for the HLSL library", body_out,
-                       run_command({options.node, generator.string(), "-preset", "hlsl", "-I", slang_dir.string(),
-                                    "-provided", library_in.string(), "-o", body_out.string(),
-                                    (source / "targets" / "kernels" / "openpbr_conformance_kernel.h").string()})));
+            std::vector<std::string> body = {options.node, generator.string(), "-preset", "hlsl", "-I", slang_dir.string()};
+            body.insert(body.end(), defines.begin(), defines.end());
+            body.insert(body.end(), {"-provided", library_in.string(), "-o", body_out.string(),
+                                     (source / "targets" / "kernels" / "openpbr_conformance_kernel.h").string()});
+            files.push_back(record(target, "conformance kernel body for the HLSL library", body_out, run_command(body)));
             const fs::path kernel_copy = directory / "conformance.hlsl";
             fs::copy_file(source / "targets" / "hlsl" / "conformance.hlsl", kernel_copy,
                           fs::copy_options::overwrite_existing);

@@ -11,11 +11,18 @@
 //   DIR/glsl/conformance.slang.glsl   DIR/glsl/shade_batch.glsl
 //   DIR/wgsl/conformance.slang.wgsl   DIR/wgsl/shade_batch.wgsl   DIR/wgsl/render.slang.wgsl
 //   DIR/wgsl/openpbr.wgsl (the WGSL library, targets/wgsl/generate_wgsl.mjs)
+//   DIR/wgsl/conformance.library.wgsl (openpbr.wgsl + targets/wgsl/conformance.wgsl: path wgsl-library)
+// With a toggle set (CompileTargetsOptions::feature_mask, `openpbr compile --specialize`) every
+// file is specialized when generated: the toggles outside the set compiled out, those inside on,
+// none left as a run-time constant (specialization constant, WGSL `override`, Metal function
+// constant); host/scene/features.h's specialization_defines. Without one, each target keeps its
+// run-time form (README "Feature toggles").
 // The Slang compiler is node + targets/slangc.mjs (the Slang 2025.15 WebAssembly build), or a
 // native slangc (CMake cache variable OPENPBR_SLANGC). See targets/README.md.
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -31,6 +38,9 @@ struct CompileTargetsOptions
     std::string source_directory;      // repository root (slang/, targets/, examples/)
     std::string node = "node";         // runs targets/slangc.mjs and targets/hlsl/generate_hlsl.mjs
     std::string slangc;                // native slangc; empty = node + targets/slangc.mjs
+    // Toggles folded when generated (OPENPBR_FEATURE_BIT_*), e.g. scene_feature_mask(materials);
+    // unset: every toggle stays a run-time constant.
+    std::optional<std::uint32_t> feature_mask;
 };
 
 // One file written, with the wall time of the command that wrote it.

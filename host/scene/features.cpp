@@ -1,5 +1,7 @@
 #include "host/scene/features.h"
 
+#include <algorithm>
+#include <cctype>
 #include <sstream>
 #include <utility>
 
@@ -140,6 +142,24 @@ std::vector<SpecializationConstant> specialization_constants(std::uint32_t mask)
     // The legacy aliases (EnableSheenAndCoat, EnableTranslucency, EnableMetallic) keep their
     // default (true): the new toggles above already say everything.
     return constants;
+}
+
+std::vector<std::string> specialization_defines(std::uint32_t mask)
+{
+    // Without specialization constants every OPENPBR_GET_SPECIALIZATION_CONSTANT is on, so only
+    // the toggles switched off need a define.
+    std::vector<std::string> defines = {"OPENPBR_SPECIALIZATION_CONSTANTS=0"};
+    for (const FeatureToggle& toggle : feature_toggles())
+    {
+        if ((mask & toggle.bit) == 0)
+        {
+            std::string name = toggle.name;
+            std::transform(name.begin(), name.end(), name.begin(),
+                           [](unsigned char character) { return char(std::toupper(character)); });
+            defines.push_back("OPENPBR_FEATURE_" + name + "=0");
+        }
+    }
+    return defines;
 }
 
 nlohmann::json specialization_info_json(std::uint32_t mask)

@@ -69,6 +69,13 @@ void check_pipeline_supports(const std::vector<Material>& materials, std::uint32
 // stay on: they only switch features off), e.g. for ComputePipelineDescription.
 std::vector<SpecializationConstant> specialization_constants(std::uint32_t mask);
 
+// The compile-time form of a toggle set (slang/openpbr_features.h): the preprocessor defines
+// that fold it when a target is generated, for Slang (`-D`) or the library generators:
+// OPENPBR_SPECIALIZATION_CONSTANTS=0, then OPENPBR_FEATURE_<NAME>=0 for each toggle outside the
+// mask, e.g. {"OPENPBR_SPECIALIZATION_CONSTANTS=0", "OPENPBR_FEATURE_FUZZ=0", ...} for coat+metal.
+// The viewer builds the same list in the page (viewer/features.mjs, specializationDefines).
+std::vector<std::string> specialization_defines(std::uint32_t mask);
+
 // The VkSpecializationInfo the host passes to vkCreateComputePipelines, as JSON:
 // {"mapEntries": [{"constantID": i, "offset": o, "size": 4}], "data": [VkBool32...]}.
 nlohmann::json specialization_info_json(std::uint32_t mask);

@@ -9,7 +9,6 @@
 
 #include "host/checks/conformance.h"
 #include "host/checks/execution_path.h"
-#include "host/gpu/vulkan_runner.h"
 #include "host/scene/features.h"
 #include "host/scene/material_library.h"
 #include "host/studies/feature_variants.h"
@@ -40,7 +39,7 @@ struct BenchClass
     std::vector<Material> members;
 };
 
-std::vector<BenchClass> bench_classes(const GpuBenchOptions& options)
+std::vector<BenchClass> every_bench_class(const GpuBenchOptions& options)
 {
     std::vector<BenchClass> bench;
     if (options.features)
@@ -67,14 +66,57 @@ std::vector<BenchClass> bench_classes(const GpuBenchOptions& options)
     return bench;
 }
 
-// ns per query of one variant, pipeline and operation; NaN where the queue had no timestamps.
-double variant_ns(const nlohmann::json& classes, const std::string& variant, const char* pipeline, const char* operation)
+// An entry's name: a feature variant's ("Default"), a material class's toggle set ("coat+metal").
+std::string entry_label(const BenchClass& bench_class)
+{
+    return bench_class.variant.empty() ? feature_set_label(bench_class.mask) : bench_class.variant;
+}
+
+// The entries of the report: every one, or those options.entries names (in report order); an
+// unknown name is an error naming the known ones.
+std::vector<BenchClass> bench_classes(const GpuBenchOptions& options)
+{
+    const std::vector<BenchClass> every = every_bench_class(options);
+    if (options.entries.empty())
+    {
+        return every;
+    }
+    std::vector<BenchClass> chosen;
+    for (const BenchClass& bench_class : every)
+    {
+        if (std::find(options.entries.begin(), options.entries.end(), entry_label(bench_class)) != options.entries.end())
+        {
+            chosen.push_back(bench_class);
+        }
+    }
+    for (const std::string& name : options.entries)
+    {
+        if (std::none_of(every.begin(), every.end(),
+                         [&](const BenchClass& bench_class) { return entry_label(bench_class) == name; }))
+        {
+            std::string known;
+            for (const BenchClass& bench_class : every)
+            {
+                known += (known.empty() ? "" : ", ") + entry_label(bench_class);
+            }
+            throw std::invalid_argument("no entry '" + name + "' (known: " + known + ")");
+        }
+    }
+    return chosen;
+}
+
+// ns per query of one variant, path, pipeline and operation; NaN where it has no device time.
+double variant_ns(const nlohmann::json& classes, const std::string& variant, const std::string& path, const char* pipeline,
+                  const char* operation)
 {
     for (const nlohmann::json& entry : classes)
     {
         if (entry.value("variant", "") == variant)
         {
-            const nlohmann::json& rate = entry["vulkan"][pipeline][operation];
+            const nlohmann::json rate = entry["paths"]
+                                            .value(path, nlohmann::json::object())
+                                            .value(pipeline, nlohmann::json::object())
+                                            .value(operation, nlohmann::json::object());
             return rate.contains("ns_per_query") ? rate["ns_per_query"].get<double>() : std::nan("");
         }
     }
@@ -85,7 +127,7 @@ double variant_ns(const nlohmann::json& classes, const std::string& variant, con
 // adds to the default material), "saved" = EveryLobe minus Without/<feature> (what leaving it
 // out of the every-lobe material saves), in ns per query, as the CPU table of docs/performance.md
 // reads benchmark_bsdf's rows.
-nlohmann::json feature_costs(const nlohmann::json& classes)
+nlohmann::json feature_costs(const nlohmann::json& classes, const std::string& path)
 {
     nlohmann::json costs = nlohmann::json::object();
     for (const CostFeature& feature : cost_features())
@@ -94,10 +136,12 @@ nlohmann::json feature_costs(const nlohmann::json& classes)
         {
             for (const Operation& operation : operations)
             {
-                const double alone = variant_ns(classes, std::string("Only/") + feature.name, pipeline, operation.name) -
-                                     variant_ns(classes, "Default", pipeline, operation.name);
-                const double saved = variant_ns(classes, "EveryLobe", pipeline, operation.name) -
-                                     variant_ns(classes, std::string("Without/") + feature.name, pipeline, operation.name);
+                const double alone =
+                    variant_ns(classes, std::string("Only/") + feature.name, path, pipeline, operation.name) -
+                    variant_ns(classes, "Default", path, pipeline, operation.name);
+                const double saved =
+                    variant_ns(classes, "EveryLobe", path, pipeline, operation.name) -
+                    variant_ns(classes, std::string("Without/") + feature.name, path, pipeline, operation.name);
                 nlohmann::json& cell = costs[feature.name][pipeline][operation.name];
                 // JSON has no NaN: a missing timing stays a missing key.
                 if (std::isfinite(alone))
@@ -122,45 +166,87 @@ double median(std::vector<double> values)
     return values.size() % 2 == 1 ? values[middle] : 0.5 * (values[middle - 1] + values[middle]);
 }
 
-// One round of the Vulkan timings of one entry, full and specialized pipeline, every mode: the
-// median over the repeats after the first is appended to the cell's "ns_per_round".
-void measure_vulkan(SpecializedPipelineCache& cache, const BenchClass& bench_class, const GpuBenchOptions& options,
-                    bool first_round, nlohmann::json& entry)
+// What one path has done so far: why it stopped, or why its specialized column did.
+struct PathState
 {
-    const std::vector<float> queries = make_queries(options.queries, bench_class.members.size(), 1);
-    const std::vector<float> packed = pack_materials(bench_class.members);
+    ExecutionPath* path = nullptr;
+    std::string skipped;              // non-empty: not run (any more), and why
+    std::string specialized_skipped;  // non-empty: no specialized form, and why
+    std::string device;
+};
+
+// "X" of a line "NAME: executed on X: ..." (the CUDA and WebGPU programs' lines), else the line.
+std::string device_of(const std::string& note)
+{
+    const std::string executed_on = "executed on ";
+    const std::size_t on = note.find(executed_on);
+    const std::size_t colon = on == std::string::npos ? on : note.find(": ", on);
+    return colon == std::string::npos ? note : note.substr(on + executed_on.size(), colon - on - executed_on.size());
+}
+
+// One round of one path on one entry, full and specialized pipeline, every mode: the device
+// time per query of each batch is appended to its cell's "ns_per_round" (the host's dispatch
+// time to "host_ns_per_round" where the path has no device time).
+void measure_path(PathState& state, const BenchClass& bench_class, const std::vector<float>& queries,
+                  const std::vector<float>& packed, const GpuBenchOptions& options, bool first_round, nlohmann::json& entry)
+{
+    const std::string name = state.path->name();
     for (const auto& [pipeline_name, pipeline_mask] :
          {std::pair<const char*, std::uint32_t>{"full", full_feature_mask()}, {"specialized", bench_class.mask}})
     {
-        ComputePipeline& pipeline = cache.pipeline(pipeline_mask);
+        const bool specialized = std::string(pipeline_name) == "specialized";
         bool statistics_reported = !first_round;
         for (const Operation& operation : operations)
         {
-            ConformanceDispatchSettings settings;
-            settings.mode = operation.mode;
-            settings.device_local = true;
-            const DispatchTiming timing =
-                dispatch_conformance_pipeline(pipeline, queries, packed, options.repeats, settings).timing;
-            nlohmann::json& cell = entry["vulkan"][pipeline_name][operation.name];
-            if (timing.device_dispatch_ms)
+            if (!state.skipped.empty() || (specialized && !state.specialized_skipped.empty()))
             {
-                cell["ns_per_round"].push_back(*timing.device_dispatch_ms * 1e6 / double(options.queries));
+                return;
+            }
+            PathBatch batch{queries, packed};
+            batch.material_list = &bench_class.members;
+            batch.mode = operation.mode;
+            batch.feature_mask = pipeline_mask;
+            batch.repeats = options.repeats;
+            batch.device_local = true;
+            PathRun run;
+            try
+            {
+                run = state.path->run(batch);
+            }
+            catch (const PathUnavailable& unavailable)
+            {
+                // The full pipeline is every path's: a path that cannot run it cannot run here.
+                (specialized ? state.specialized_skipped : state.skipped) = unavailable.what();
+                continue;
+            }
+            if (state.device.empty())
+            {
+                state.device = device_of(run.device);
+            }
+            nlohmann::json& cell = entry["paths"][name][pipeline_name][operation.name];
+            // The CUDA program times each operation in one run; the others time the batch's mode.
+            const auto own = run.device_ns_per_operation.find(operation.name);
+            if (own != run.device_ns_per_operation.end())
+            {
+                cell["ns_per_round"].push_back(own->second);
+            }
+            else if (run.device_ns_per_query)
+            {
+                cell["ns_per_round"].push_back(*run.device_ns_per_query);
             }
             else
             {
                 cell["note"] = "the queue has no timestamps";
-                cell["host_ns_per_round"].push_back(timing.dispatch_ms * 1e6 / double(options.queries));
+                cell["host_ns_per_round"].push_back(run.dispatch_ms * 1e6 / double(options.queries));
             }
             if (!statistics_reported)
             {
                 // After the first dispatch: lavapipe compiles there. Register count, spills and
                 // the like where the driver reports them.
-                nlohmann::json statistics = nlohmann::json::object();
-                for (const PipelineStatistic& statistic : pipeline.statistics())
+                if (!run.pipeline_statistics.empty())
                 {
-                    statistics[statistic.name] = statistic.value;
+                    entry["paths"][name][std::string(pipeline_name) + "_statistics"] = run.pipeline_statistics;
                 }
-                entry["vulkan"][std::string(pipeline_name) + "_statistics"] = statistics;
                 statistics_reported = true;
             }
         }
@@ -178,25 +264,27 @@ nlohmann::json run_gpu_bench(const GpuBenchOptions& options)
     report["queries_per_class"] = options.queries;
     report["repeats"] = options.repeats;
     report["rounds"] = options.rounds;
-    report["vulkan_path"] = options.path;
     report["timing"] = "device: Vulkan timestamps around the dispatch (buffers device-local, uploaded once), median "
-                       "after the first, median of the rounds; CUDA events around the launch, median after a warm-up";
-    std::optional<VulkanContext> context;
-    std::string context_error = "not requested";
-    if (options.vulkan)
-    {
-        context = VulkanContext::create(VulkanOptions{}, &context_error);
-    }
-    report["vulkan_device"] = context ? context->device_name() : "none: " + context_error;
-    // Pipelines built once (full, and one per class's toggle set) and shared by the three modes,
-    // which are a parameter of the kernel.
-    std::optional<SpecializedPipelineCache> cache;
-    if (context)
-    {
-        cache.emplace(*context, conformance_pipeline_description(options.path, options.kernel_directory));
-    }
-    report["cuda_device"] = options.cuda ? "none" : "not requested";
+                       "after the first, median of the rounds; CUDA events around the launch, median after a warm-up; "
+                       "WebGPU timestamp queries around the pass, median after the first";
     ExecutionPaths paths(ExecutionPathSettings{options.kernel_directory, false, false});
+    std::vector<PathState> states;
+    const std::vector<std::string> device_paths = execution_path_names(false);
+    const std::vector<std::string> every_path = execution_path_names(true);
+    for (const std::string& name : options.paths)
+    {
+        if (std::find(device_paths.begin(), device_paths.end(), name) == device_paths.end() &&
+            std::find(every_path.begin(), every_path.end(), name) != every_path.end())
+        {
+            // The CPU paths have no device time; benchmark_bsdf times the CPU build.
+            throw std::invalid_argument("bench gpu times device kernels; '" + name +
+                                        "' is a CPU path (benchmarks/benchmark_bsdf times the CPU build)");
+        }
+        PathState state;
+        state.path = &paths.path(name);
+        state.skipped = state.path->unavailable_reason();
+        states.push_back(state);
+    }
     report["classes"] = nlohmann::json::array();
     for (const auto& [variant, mask, members] : classes)
     {
@@ -212,63 +300,44 @@ nlohmann::json run_gpu_bench(const GpuBenchOptions& options)
             names.push_back(material.name);
         }
         entry["materials"] = names;
-        if (options.cuda)
-        {
-            // The CUDA paths through the execution-path mechanism (one program run per class for
-            // both): their kernel times per operation, or why they did not run.
-            const std::vector<float> queries = make_queries(options.queries, members.size(), 1);
-            const std::vector<float> packed = pack_materials(members);
-            for (const char* name : {"cuda", "slang-cuda"})
-            {
-                ExecutionPath& path = paths.path(name);
-                try
-                {
-                    const std::string reason = path.unavailable_reason();
-                    if (!reason.empty())
-                    {
-                        throw PathUnavailable(reason);
-                    }
-                    const PathRun run = path.run(PathBatch{queries, packed});
-                    const std::string& note = run.device;
-                    const std::size_t on = note.find("executed on ");
-                    const std::size_t colon = note.find(": ", on);
-                    if (on != std::string::npos && colon != std::string::npos)
-                    {
-                        report["cuda_device"] = note.substr(on + 12, colon - on - 12);
-                    }
-                    for (const auto& [operation, ns] : run.device_ns_per_operation)
-                    {
-                        entry["cuda"][name][operation] = rate(ns);
-                    }
-                }
-                catch (const PathUnavailable& unavailable)
-                {
-                    report["cuda_device"] = std::string("none: ") + unavailable.what();
-                }
-            }
-        }
+        entry["paths"] = nlohmann::json::object();
         report["classes"].push_back(entry);
     }
-    if (context)
+    // Each entry's batch, the same in every round.
+    std::vector<std::vector<float>> class_queries;
+    std::vector<std::vector<float>> class_materials;
+    for (const BenchClass& bench_class : classes)
     {
-        // Rounds over every entry, so a slow spell of a shared machine falls on all entries rather
-        // than on the ones measured during it; the median of the rounds drops the spells (the
-        // fastest round was tried: on the 2-core machine at load 9-11 one lucky round put a
-        // variant at a third of an identical one's time).
-        for (int round = 0; round < options.rounds; ++round)
+        class_queries.push_back(make_queries(options.queries, bench_class.members.size(), 1));
+        class_materials.push_back(pack_materials(bench_class.members));
+    }
+    // Rounds over every entry, so a slow spell of a shared machine falls on all entries rather
+    // than on the ones measured during it; the median of the rounds drops the spells (the
+    // fastest round was tried: on the 2-core machine at load 9-11 one lucky round put a variant
+    // at a third of an identical one's time).
+    for (int round = 0; round < options.rounds; ++round)
+    {
+        for (std::size_t index = 0; index < classes.size(); ++index)
         {
-            for (std::size_t index = 0; index < classes.size(); ++index)
+            for (PathState& state : states)
             {
-                measure_vulkan(*cache, classes[index], options, round == 0, report["classes"][index]);
+                measure_path(state, classes[index], class_queries[index], class_materials[index], options, round == 0,
+                             report["classes"][index]);
             }
         }
-        for (nlohmann::json& entry : report["classes"])
+    }
+    for (nlohmann::json& entry : report["classes"])
+    {
+        for (auto& [name, path_cells] : entry["paths"].items())
         {
             for (const char* pipeline_name : {"full", "specialized"})
             {
-                for (const Operation& operation : operations)
+                if (!path_cells.contains(pipeline_name))
                 {
-                    nlohmann::json& cell = entry["vulkan"][pipeline_name][operation.name];
+                    continue;
+                }
+                for (auto& [operation, cell] : path_cells[pipeline_name].items())
+                {
                     if (cell.contains("ns_per_round"))
                     {
                         cell.update(rate(median(cell["ns_per_round"].get<std::vector<double>>())));
@@ -281,9 +350,27 @@ nlohmann::json run_gpu_bench(const GpuBenchOptions& options)
             }
         }
     }
-    if (options.features && context)
+    report["paths"] = nlohmann::json::array();
+    for (const PathState& state : states)
     {
-        report["feature_costs"] = feature_costs(report["classes"]);
+        nlohmann::json path_report = {{"name", state.path->name()}, {"description", state.path->description()}};
+        if (!state.skipped.empty())
+        {
+            path_report["skipped"] = state.skipped;
+        }
+        else
+        {
+            path_report["device"] = state.device;
+            if (!state.specialized_skipped.empty())
+            {
+                path_report["specialized_skipped"] = state.specialized_skipped;
+            }
+            if (options.features)
+            {
+                report["feature_costs"][state.path->name()] = feature_costs(report["classes"], state.path->name());
+            }
+        }
+        report["paths"].push_back(path_report);
     }
     return report;
 }
@@ -293,9 +380,20 @@ std::string gpu_bench_text(const nlohmann::json& report)
     std::ostringstream text;
     text << "bench gpu: " << report["queries_per_class"].get<std::size_t>() << " queries per class and kernel; "
          << report["timing"].get<std::string>() << "\n";
-    text << "  Vulkan device: " << report["vulkan_device"].get<std::string>() << " (path "
-         << report["vulkan_path"].get<std::string>() << ")\n";
-    text << "  CUDA device: " << report["cuda_device"].get<std::string>() << "\n";
+    for (const nlohmann::json& path : report["paths"])
+    {
+        const std::string name = path["name"].get<std::string>();
+        if (path.contains("skipped"))
+        {
+            text << "  " << name << " device: none: " << path["skipped"].get<std::string>() << "\n";
+            continue;
+        }
+        text << "  " << name << " device: " << path["device"].get<std::string>() << "\n";
+        if (path.contains("specialized_skipped"))
+        {
+            text << "    specialized not run: " << path["specialized_skipped"].get<std::string>() << "\n";
+        }
+    }
     text << "  ns per query (eval / sample / pdf, each with prepare):\n";
     auto triple = [](const nlohmann::json& kernels) {
         std::ostringstream line;
@@ -325,24 +423,24 @@ std::string gpu_bench_text(const nlohmann::json& report)
         {
             text << "  " << entry["toggles"].get<std::string>() << " (" << entry["materials"].size() << " materials):";
         }
-        if (entry.contains("vulkan"))
+        // In the order asked for (the JSON object sorts its keys).
+        const char* separator = " ";
+        for (const nlohmann::json& path : report["paths"])
         {
-            text << " vulkan full " << triple(entry["vulkan"]["full"]) << ", specialized "
-                 << triple(entry["vulkan"]["specialized"]);
-        }
-        if (entry.contains("cuda"))
-        {
-            for (const auto& [name, kernels] : entry["cuda"].items())
+            const std::string name = path["name"].get<std::string>();
+            if (!entry["paths"].contains(name))
             {
-                text << "; " << name << " " << triple(kernels);
+                continue;
             }
+            const nlohmann::json& cells = entry["paths"][name];
+            text << separator << name << " full " << triple(cells.value("full", nlohmann::json::object()))
+                 << ", specialized " << triple(cells.value("specialized", nlohmann::json::object()));
+            separator = "; ";
         }
         text << "\n";
     }
     if (report.contains("feature_costs"))
     {
-        text << "  per feature, ns per query (eval / sample / pdf): alone = Only/<feature> - Default, saved = "
-                "EveryLobe - Without/<feature>\n";
         auto differences = [](const nlohmann::json& operations_json, const char* key) {
             std::ostringstream line;
             bool first = true;
@@ -361,14 +459,20 @@ std::string gpu_bench_text(const nlohmann::json& report)
             }
             return line.str();
         };
-        // Table order (the JSON object sorts its keys).
-        for (const CostFeature& feature : cost_features())
+        for (const auto& [path, costs] : report["feature_costs"].items())
         {
-            const nlohmann::json& pipelines = report["feature_costs"][feature.name];
-            text << "  " << feature.name << ": full alone " << differences(pipelines["full"], "alone_ns") << ", saved "
-                 << differences(pipelines["full"], "saved_ns") << "; specialized alone "
-                 << differences(pipelines["specialized"], "alone_ns") << ", saved "
-                 << differences(pipelines["specialized"], "saved_ns") << "\n";
+            text << "  " << path
+                 << " per feature, ns per query (eval / sample / pdf): alone = Only/<feature> - Default, saved = "
+                    "EveryLobe - Without/<feature>\n";
+            // Table order (the JSON object sorts its keys).
+            for (const CostFeature& feature : cost_features())
+            {
+                const nlohmann::json& pipelines = costs[feature.name];
+                text << "  " << feature.name << ": full alone " << differences(pipelines["full"], "alone_ns") << ", saved "
+                     << differences(pipelines["full"], "saved_ns") << "; specialized alone "
+                     << differences(pipelines["specialized"], "alone_ns") << ", saved "
+                     << differences(pipelines["specialized"], "saved_ns") << "\n";
+            }
         }
     }
     return text.str();

@@ -5,7 +5,7 @@
 // CPU build under the same per-kind metric as every other path.
 //
 //   node targets/wgsl/dispatch_conformance.mjs -path NAME -kernel FILE.wgsl [-entry NAME]
-//        [-swiftshader ICD.json] [-constant ID=VALUE]... [-repeats N] -dir DIR
+//        [-swiftshader ICD.json] [-constant ID=VALUE]... [-mode M] [-repeats N] -dir DIR
 //
 // Inputs (float32, as host/gpu/cuda_conformance.h writes them): DIR/queries.f32,
 // DIR/materials.f32, DIR/lut.f32, DIR/fuzz_ltc.f32. Output: DIR/NAME.results.f32
@@ -13,7 +13,9 @@
 // the pipeline build time and "= T ns/query", or "NAME: skipped: REASON" (exit status 77).
 // Bindings (group 0): 0 tables, 1 fuzz table, 2 queries, 3 materials, 4 parameters (query
 // count, mode), 5 results: those of every conformance kernel. -constant sets a WGSL `override`
-// by its @id (the feature toggles, slang/openpbr_features.h), e.g. -constant 0=false.
+// by its @id (the feature toggles, slang/openpbr_features.h), e.g. -constant 0=false. -mode is
+// the kernel's OPENPBR_CONFORMANCE_MODE_* (0 every operation, the default; 1 eval, 2 sample,
+// 3 pdf, each with prepare, as `openpbr bench gpu` times them).
 //
 // The adapter is the first one Dawn offers. Dawn refuses Mesa's lavapipe, so on a machine whose
 // only Vulkan driver is lavapipe there is none; then, unless VK_ICD_FILENAMES is already set,
@@ -35,7 +37,7 @@ const RETRY_VARIABLE = 'OPENPBR_WGSL_SWIFTSHADER_RETRY';
 class UsageError extends Error {}
 
 function parseArgs(argv) {
-  const options = { path: null, kernel: null, entry: 'main', swiftshader: null, directory: null, constants: {}, repeats: 3 };
+  const options = { path: null, kernel: null, entry: 'main', swiftshader: null, directory: null, constants: {}, mode: 0, repeats: 3 };
   for (let i = 0; i < argv.length; i++) {
     const value = () => {
       if (i + 1 >= argv.length) throw new UsageError(`${argv[i]} needs a value`);
@@ -48,6 +50,7 @@ function parseArgs(argv) {
       case '-swiftshader': options.swiftshader = value(); break;
       case '-dir': options.directory = value(); break;
       case '-repeats': options.repeats = Number(value()); break;
+      case '-mode': options.mode = Number(value()); break;
       case '-constant': {
         const match = /^(\d+)=(true|false|[-+0-9.eE]+)$/.exec(value());
         if (!match) throw new UsageError(`-constant needs ID=VALUE (true, false or a number), got '${argv[i]}'`);
@@ -59,6 +62,7 @@ function parseArgs(argv) {
   }
   if (!options.path || !options.kernel || !options.directory) throw new UsageError('-path, -kernel and -dir are required');
   if (!Number.isInteger(options.repeats) || options.repeats < 1) throw new UsageError('-repeats needs a whole number >= 1');
+  if (![0, 1, 2, 3].includes(options.mode)) throw new UsageError('-mode needs 0 (every operation), 1 (eval), 2 (sample) or 3 (pdf)');
   return options;
 }
 
@@ -167,7 +171,7 @@ async function dispatch(adapter, options) {
       storage('fuzz table', fuzz, copyDestination),
       storage('queries', queries, copyDestination),
       storage('materials', materials, copyDestination),
-      storage('parameters', new Uint32Array([queryCount, 0, 0, 0]), copyDestination),
+      storage('parameters', new Uint32Array([queryCount, options.mode, 0, 0]), copyDestination),
       device.createBuffer({ label: 'results', size: resultBytes, usage: GPUBufferUsage.STORAGE | GPUBufferUsage.COPY_SRC }),
     ];
     // The kernel's layout is derived from its WGSL ('auto'), which holds only the bindings the

@@ -121,7 +121,17 @@ function plainNames(slangText) {
   return text;
 }
 
-function header(options) {
+// The library's toggles as its text has them: `override` constants, or none left (every toggle
+// folded by the defines, e.g. `openpbr compile --specialize`).
+function toggleNote(library) {
+  return /^@id\(\d+\) override /m.test(library)
+    ? `// Feature toggles: the @id(N) override booleans Enable* (true by default; N as
+// OPENPBR_SPECIALIZATION_ID_* of slang/openpbr_features.h), set through the pipeline's constants.`
+    : `// Feature toggles: folded when generated (the defines above): no override constants; the effects
+// whose OPENPBR_FEATURE_<NAME> is 0 are compiled out.`;
+}
+
+function header(options, library) {
   const specialized = options.defines.length > 0 ? options.defines.join(' ') : 'none';
   return `// openpbr.wgsl: the OpenPBR 1.1 surface BSDF for WebGPU (WGSL), one self-contained file generated
 // from the single-source headers by targets/wgsl/generate_wgsl.mjs (Slang's WGSL target). Do not
@@ -138,8 +148,7 @@ function header(options) {
 //   @binding(1) openpbr_fuzz_ltc_data   slang/generated/openpbr_fuzz_ltc.bin (fuzz LTC table)
 //   @binding(2) openpbr_material_data   packed materials, OPENPBR_PACKED_MATERIAL_FLOATS (80) floats
 //                                       each, in the order of OPENPBR_PARAMETERS (slang/openpbr_parameters.h)
-// Feature toggles: the @id(N) override booleans Enable* (true by default; N as
-// OPENPBR_SPECIALIZATION_ID_* of slang/openpbr_features.h), set through the pipeline's constants.
+${toggleNote(library)}
 `;
 }
 
@@ -152,7 +161,8 @@ function main() {
       throw new Error(`cannot read ${file}: ${error.message}`);
     }
   });
-  const text = header(options) + '\n' + plainNames(slangToWgsl(options)) + appended.join('');
+  const library = plainNames(slangToWgsl(options));
+  const text = header(options, library) + '\n' + library + appended.join('');
   fs.mkdirSync(path.dirname(path.resolve(options.output)), { recursive: true });
   fs.writeFileSync(options.output, text);
 }

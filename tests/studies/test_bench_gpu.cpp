@@ -2,6 +2,8 @@
 // with small sizes, over the material classes and over the feature variants (`--features`):
 // every entry, pipeline and operation reports a positive, finite device time, the device is
 // named as the driver names it, and the feature variants are those of benchmark_bsdf's table.
+// The paths come from the execution-path interface: a texture-table path runs as well, a path
+// that cannot run here is reported with its reason, an unknown name is refused.
 // No timing thresholds: timings are measured, never asserted.
 #include <algorithm>
 #include <cmath>
@@ -11,6 +13,7 @@
 #include <gtest/gtest.h>
 
 #include "host/checks/conformance.h"
+#include "host/checks/execution_path.h"
 #include "host/gpu/vulkan_runner.h"
 #include "host/scene/features.h"
 #include "host/scene/material_library.h"
@@ -20,18 +23,19 @@
 namespace {
 
 // Every entry of a report (material classes or feature variants), on both pipelines and in
-// every mode, has a positive, finite device time: the median of its rounds.
-void expect_positive_finite_rates(const nlohmann::json& report)
+// every mode, has a positive, finite device time on `path`: the median of its rounds.
+void expect_positive_finite_rates(const nlohmann::json& report, const std::string& path)
 {
     ASSERT_FALSE(report["classes"].empty());
     for (const nlohmann::json& entry : report["classes"])
     {
         const std::string label = entry.value("variant", entry["toggles"].get<std::string>());
+        ASSERT_TRUE(entry["paths"].contains(path)) << label << ": " << entry.dump();
         for (const char* pipeline : {"full", "specialized"})
         {
             for (const char* operation : {"eval", "sample", "pdf"})
             {
-                const nlohmann::json& rate = entry["vulkan"][pipeline][operation];
+                const nlohmann::json& rate = entry["paths"][path][pipeline][operation];
                 ASSERT_TRUE(rate.contains("ns_per_query"))
                     << label << " " << pipeline << " " << operation << ": " << rate.dump();
                 const double ns = rate["ns_per_query"].get<double>();
@@ -65,13 +69,15 @@ TEST_P(BenchGpuSet, ReportsPositiveFiniteDeviceTimes)
     options.kernel_directory = OPENPBR_KERNEL_DIR;
     options.queries = 256;
     options.repeats = 2;
-    options.cuda = false;  // the CUDA program has its own check (targets_cuda_nvcc)
+    options.paths = {"slang-spirv"};  // the CUDA program has its own check (targets_cuda_nvcc)
     options.features = GetParam();
     options.rounds = options.features ? 3 : 1;  // both the single pass and the median of several
     const nlohmann::json report = openpbr::host::run_gpu_bench(options);
-    EXPECT_EQ(report["vulkan_device"].get<std::string>(), context->device_name());
+    ASSERT_EQ(report["paths"].size(), 1u);
+    EXPECT_EQ(report["paths"][0]["name"].get<std::string>(), "slang-spirv");
+    EXPECT_EQ(report["paths"][0]["device"].get<std::string>(), context->device_name());
     EXPECT_EQ(report["set"].get<std::string>(), options.features ? "features" : "material classes");
-    expect_positive_finite_rates(report);
+    expect_positive_finite_rates(report, "slang-spirv");
     EXPECT_FALSE(openpbr::host::gpu_bench_text(report).empty());
     if (!options.features)
     {
@@ -95,7 +101,7 @@ TEST_P(BenchGpuSet, ReportsPositiveFiniteDeviceTimes)
         {
             if (entry["variant"] == variant)
             {
-                return entry["vulkan"][pipeline][operation]["ns_per_query"].get<double>();
+                return entry["paths"]["slang-spirv"][pipeline][operation]["ns_per_query"].get<double>();
             }
         }
         ADD_FAILURE() << "no variant " << variant;
@@ -107,7 +113,7 @@ TEST_P(BenchGpuSet, ReportsPositiveFiniteDeviceTimes)
         {
             for (const char* operation : {"eval", "sample", "pdf"})
             {
-                const nlohmann::json& cell = report["feature_costs"][feature.name][pipeline][operation];
+                const nlohmann::json& cell = report["feature_costs"]["slang-spirv"][feature.name][pipeline][operation];
                 ASSERT_TRUE(cell.contains("alone_ns") && cell.contains("saved_ns"))
                     << feature.name << " " << pipeline << " " << operation << ": " << cell.dump();
                 EXPECT_DOUBLE_EQ(cell["alone_ns"].get<double>(),
@@ -125,6 +131,58 @@ INSTANTIATE_TEST_SUITE_P(BenchGpu, BenchGpuSet, ::testing::Values(false, true),
                          [](const ::testing::TestParamInfo<bool>& info) {
                              return info.param ? std::string("Features") : std::string("MaterialClasses");
                          });
+
+// Through the execution-path interface, a path whose tables are sampled images times as a
+// buffer path does (before, the bench bound no tables for it), and each path of a report is
+// either timed on its device or reported with the reason it cannot run here: the CUDA paths,
+// built or not, have no specialized kernel, which the report says instead of timing the full
+// one under that name. --entries keeps the entries named, in report order. An unknown path or
+// entry and a CPU path (no device time) are refused.
+TEST(BenchGpu, EveryPathIsTimedOrReportedWithItsReason)
+{
+    std::string error;
+    const auto context = openpbr::host::VulkanContext::create({}, &error);
+    if (!context)
+    {
+        GTEST_SKIP() << "no Vulkan device: " << error;
+    }
+    openpbr::host::GpuBenchOptions options;
+    options.materials_directory = OPENPBR_MATERIALS_DIR;
+    options.kernel_directory = OPENPBR_KERNEL_DIR;
+    options.queries = 128;
+    options.repeats = 2;
+    options.paths = {"slang-spirv-texture", "cuda"};
+    options.entries = {"metal", "base"};  // report order: base first
+    const nlohmann::json report = openpbr::host::run_gpu_bench(options);
+    ASSERT_EQ(report["classes"].size(), 2u);
+    EXPECT_EQ(report["classes"][0]["toggles"].get<std::string>(), "base");
+    EXPECT_EQ(report["classes"][1]["toggles"].get<std::string>(), "metal");
+    ASSERT_EQ(report["paths"].size(), 2u);
+    EXPECT_EQ(report["paths"][0]["device"].get<std::string>(), context->device_name());
+    expect_positive_finite_rates(report, "slang-spirv-texture");
+    const nlohmann::json& cuda = report["paths"][1];
+    EXPECT_EQ(cuda["name"].get<std::string>(), "cuda");
+    if (cuda.contains("skipped"))
+    {
+        EXPECT_FALSE(cuda["skipped"].get<std::string>().empty());
+        for (const nlohmann::json& entry : report["classes"])
+        {
+            EXPECT_FALSE(entry["paths"].contains("cuda")) << entry.dump();
+        }
+    }
+    else
+    {
+        EXPECT_NE(cuda["specialized_skipped"].get<std::string>().find("every toggle on"), std::string::npos);
+    }
+    EXPECT_NE(openpbr::host::gpu_bench_text(report).find("cuda device: "), std::string::npos);
+    options.entries = {"no-such-entry"};
+    EXPECT_THROW(openpbr::host::run_gpu_bench(options), std::invalid_argument);
+    options.entries.clear();
+    options.paths = {"no-such-path"};
+    EXPECT_THROW(openpbr::host::run_gpu_bench(options), std::invalid_argument);
+    options.paths = {"cpu-fma"};  // no device time to report
+    EXPECT_THROW(openpbr::host::run_gpu_bench(options), std::invalid_argument);
+}
 
 // The device-local buffers (staging copies in and out) give the same results as host-visible
 // ones, and each mode writes exactly its own operation's slots of the full run.

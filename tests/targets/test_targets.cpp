@@ -1,21 +1,30 @@
 // Targets that can be executed here: the HLSL library's conformance kernel (glslang's HLSL
 // front end) and the consumer example (Slang SPIR-V) on Vulkan, the CUDA paths where a CUDA
-// device exists; plus the option handling of `openpbr compile`.
+// device exists; plus the option handling of `openpbr compile`, and its WGSL specialized when
+// generated against the built WGSL with the toggles set as `override` constants.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <map>
 #include <optional>
+#include <sstream>
 #include <stdexcept>
 
 #include "host/gpu/compile_targets.h"
 #include "host/checks/conformance.h"
+#include "host/checks/execution_path.h"
 #include "host/gpu/cuda_conformance.h"
 #include "host/scene/material_library.h"
 #include "host/gpu/shipped_tables.h"
 #include "host/gpu/vulkan_runner.h"
+#include "host/scene/features.h"
 #include "slang/openpbr.h"
 
 namespace {
@@ -237,6 +246,172 @@ TEST(Targets, CompileRejectsUnknownTarget)
     options.targets = {"dxil"};
     EXPECT_THROW(compile_targets(options), std::invalid_argument);
     EXPECT_EQ(compile_target_names(), (std::vector<std::string>{"spirv", "hlsl", "metal", "cuda", "glsl", "wgsl"}));
+}
+
+std::string file_text(const std::filesystem::path& path)
+{
+    std::ifstream file(path);
+    std::ostringstream text;
+    text << file.rdbuf();
+    return text.str();
+}
+
+// Toggles in both of WGSL's forms (README "WebGPU"): the kernels as built, every toggle an
+// `override`, run with those outside a set false at pipeline creation (PathBatch::feature_mask),
+// and the kernels `openpbr compile --target wgsl --specialize` generated for the set, with no
+// `override` left, give the same results on both WebGPU paths. The batch holds materials inside
+// the set and one that needs a toggle outside it (the thin film): on that one's queries the
+// results must lie far closer to the CPU build with the set's toggles (ScopedFeatureMask) than to
+// the CPU build with every toggle on, which shows that both forms really switched it off, rather
+// than both running every toggle on.
+TEST(Targets, WgslSpecializedWhenGeneratedMatchesOverrideConstants)
+{
+    const std::vector<std::string> path_names = {"slang-wgsl", "wgsl-library"};
+    ExecutionPaths built(ExecutionPathSettings{OPENPBR_KERNEL_DIR});
+    for (const std::string& name : path_names)
+    {
+        const std::string reason = built.path(name).unavailable_reason();
+        if (!reason.empty())
+        {
+            GTEST_SKIP() << name << ": " << reason;
+        }
+    }
+    const std::uint32_t mask = parse_feature_names({"coat", "metal"});
+    std::vector<Material> materials;
+    std::size_t outside_material = 0;
+    bool outside_found = false;
+    for (const Material& material : conformance_materials(load_material_directory(OPENPBR_MATERIALS_DIR)))
+    {
+        const std::uint32_t needs = required_feature_mask(material);
+        if ((needs & ~mask) == 0)
+        {
+            materials.push_back(material);
+        }
+        else if (!outside_found && (needs & OPENPBR_FEATURE_BIT_THIN_FILM) != 0)
+        {
+            outside_material = materials.size();
+            materials.push_back(material);
+            outside_found = true;
+        }
+    }
+    ASSERT_TRUE(outside_found) << "no conformance material needs the thin film";
+    // Every toggle of the set is used by some material of the batch.
+    ASSERT_EQ(scene_feature_mask(materials) & mask, mask);
+
+    // 512 queries: SwiftShader's pipeline builds are the cost, not the batch.
+    const std::vector<float> packed = pack_materials(materials);
+    const std::vector<float> queries = make_queries(512, materials.size(), 11);
+    const std::vector<float> cpu = run_conformance_cpu(queries, packed);
+    const std::vector<float> cpu_specialized = [&] {
+        const ScopedFeatureMask scoped(mask);
+        return run_conformance_cpu(queries, packed);
+    }();
+    // The override form first, before the compile: where Dawn finds no adapter at all the test
+    // stops here. Where SwiftShader is installed (scripts/setup.sh, CI) the paths must run.
+    std::map<std::string, std::vector<float>> overridden;
+    for (const std::string& name : path_names)
+    {
+        PathBatch with_overrides{queries, packed};
+        with_overrides.feature_mask = mask;
+        try
+        {
+            overridden[name] = built.path(name).run(with_overrides).results;
+        }
+        catch (const PathUnavailable& unavailable)
+        {
+            ASSERT_FALSE(std::filesystem::exists(swiftshader_vulkan_driver()))
+                << name << " did not run although SwiftShader is installed: " << unavailable.what();
+            GTEST_SKIP() << name << ": " << unavailable.what();
+        }
+    }
+
+    CompileTargetsOptions options = default_compile_targets_options();
+    options.targets = {"wgsl"};
+    // Per process: another build's ctest may run the same test at the same time.
+    options.output_directory =
+        (std::filesystem::temp_directory_path() / ("openpbr-wgsl-specialized-" + std::to_string(getpid()))).string();
+    options.feature_mask = mask;
+    compile_targets(options);
+    const std::filesystem::path generated_directory = std::filesystem::path(options.output_directory) / "wgsl";
+    // An `override` is declared "@id(N) override EnableCoat : bool = true;".
+    for (const char* kernel : {"conformance.slang.wgsl", "conformance.library.wgsl"})
+    {
+        EXPECT_NE(file_text(std::filesystem::path(OPENPBR_KERNEL_DIR) / kernel).find("@id("), std::string::npos)
+            << kernel << " as built";
+        EXPECT_EQ(file_text(generated_directory / kernel).find("@id("), std::string::npos)
+            << kernel << " specialized when generated";
+    }
+
+    ExecutionPaths generated(ExecutionPathSettings{generated_directory.string()});
+    for (const std::string& name : path_names)
+    {
+        const std::vector<float>& with_overrides = overridden[name];
+        const std::vector<float> folded = generated.path(name).run(PathBatch{queries, packed}).results;
+        ASSERT_EQ(with_overrides.size(), cpu.size()) << name;
+        ASSERT_EQ(folded.size(), cpu.size()) << name;
+        std::size_t differing = 0;
+        double from_specialized_cpu = 0.0;  // summed over the outside material's eval slots
+        double from_full_cpu = 0.0;
+        for (std::size_t query = 0; query < cpu.size() / result_floats; ++query)
+        {
+            for (std::size_t slot = query * result_floats; slot < (query + 1) * result_floats; ++slot)
+            {
+                differing += std::memcmp(&with_overrides[slot], &folded[slot], sizeof(float)) != 0 ? 1 : 0;
+            }
+            if (std::size_t(queries[query * query_floats]) == outside_material)
+            {
+                // Eval's diffuse and specular (slots 0-5): finite for every query.
+                for (std::size_t slot = query * result_floats; slot < query * result_floats + 6; ++slot)
+                {
+                    from_specialized_cpu += std::fabs(double(folded[slot]) - double(cpu_specialized[slot]));
+                    from_full_cpu += std::fabs(double(folded[slot]) - double(cpu[slot]));
+                }
+            }
+        }
+        std::cout << name << ": summed eval difference on the thin-film material's queries from the CPU build with the "
+                  << "set's toggles " << from_specialized_cpu << ", with every toggle " << from_full_cpu << "\n";
+        EXPECT_EQ(differing, 0u) << name << ": results of the two forms differ";
+        // Measured (2026-11-27, both paths, SwiftShader): 0 from the CPU build with the set's
+        // toggles against 1.395 with every toggle on; a tenth leaves room for WGSL's math.
+        EXPECT_LT(from_specialized_cpu * 10.0, from_full_cpu)
+            << name << ": the thin film was not switched off (summed eval difference from the CPU build with the "
+            << "set's toggles " << from_specialized_cpu << ", with every toggle " << from_full_cpu << ")";
+    }
+    std::filesystem::remove_all(options.output_directory);
+}
+
+// The compile-time form of a toggle set has one rule: the C++ host's list
+// (specialization_defines, which `openpbr compile --specialize` passes) is the one the browser
+// viewer builds in the page from slang/openpbr_features.h (viewer/features.mjs).
+TEST(Targets, SpecializationDefinesAreTheViewers)
+{
+    const CompileTargetsOptions tools = default_compile_targets_options();
+    const std::string source = tools.source_directory;
+    for (const std::uint32_t mask : {0u, std::uint32_t(OPENPBR_FEATURE_BIT_COAT | OPENPBR_FEATURE_BIT_METAL),
+                                     OPENPBR_FEATURE_BIT_THIN_FILM, full_feature_mask()})
+    {
+        const std::string command = tools.node +
+                                    " --input-type=module -e \"import { readFeatureToggles, "
+                                    "specializationDefines } from '" +
+                                    source + "/viewer/features.mjs'; " +
+                                    "console.log(specializationDefines(readFeatureToggles('" + source +
+                                    "/slang/openpbr_features.h'), " + std::to_string(mask) + ").join(' '))\"";
+        FILE* const pipe = popen(command.c_str(), "r");
+        ASSERT_NE(pipe, nullptr) << command;
+        std::string viewer;
+        char buffer[512];
+        while (std::fgets(buffer, sizeof(buffer), pipe) != nullptr)
+        {
+            viewer += buffer;
+        }
+        ASSERT_EQ(pclose(pipe), 0) << command;
+        std::string host;
+        for (const std::string& define : specialization_defines(mask))
+        {
+            host += (host.empty() ? "" : " ") + define;
+        }
+        EXPECT_EQ(viewer, host + "\n") << "toggle set " << feature_set_label(mask);
+    }
 }
 
 }  // namespace
