@@ -270,7 +270,7 @@ class VulkanPath final : public ExecutionPath
   private:
     VulkanPathKernel kernel_;
     ExecutionPaths::Shared& shared_;
-    std::optional<ComputePipeline> pipeline_;  // built at the first batch
+    std::optional<ComputePipeline> pipeline_;            // built at the first batch
     std::optional<SpecializedPipelineCache> pipelines_;  // the batches with a feature_mask
 };
 

@@ -342,11 +342,11 @@ OPENPBR_FUNC float openpbr_ggx_lobe_dielectric_reflection_albedo(float mu, float
 #endif
 // Metal below the base's critical cosine (1), the evanescent film, the propagating film (its
 // segments, the median's and the last), or the plain lobe's segments.
-#define OPENPBR_FILM_ESTIMATE_CRITICAL_CUTS                                                                      \
+#define OPENPBR_FILM_ESTIMATE_CRITICAL_CUTS \
     (2 + OPENPBR_FILM_ESTIMATE_EVANESCENT_SEGMENTS + OPENPBR_FILM_ESTIMATE_CRITICAL_SEGMENTS)
-#define OPENPBR_FILM_ESTIMATE_MAX_SEGMENTS                                                                       \
+#define OPENPBR_FILM_ESTIMATE_MAX_SEGMENTS                                                                            \
     (OPENPBR_FILM_ESTIMATE_CRITICAL_CUTS > OPENPBR_FILM_ESTIMATE_PLAIN_SEGMENTS ? OPENPBR_FILM_ESTIMATE_CRITICAL_CUTS \
-                                                                                 : OPENPBR_FILM_ESTIMATE_PLAIN_SEGMENTS)
+                                                                                : OPENPBR_FILM_ESTIMATE_PLAIN_SEGMENTS)
 
 OPENPBR_FUNC float openpbr_critical_cosine(float n, float n_o)
 {
@@ -384,7 +384,9 @@ OPENPBR_FUNC vec2 openpbr_film_segment_point(OPENPBR_IN(OpenPBR_FilmLobeTable) t
         const float fraction = look_up == 2 ? 0.5f : 0.25f + 0.5f * float(look_up);
         const float cosine = openpbr_film_lobe_quantile(table, start.x + fraction * share);
         const float path = openpbr_film_optical_path(thickness_um, film_offset, n_o, cosine);
-        quartile_paths = look_up == 0 ? vec2(path, quartile_paths.y) : look_up == 1 ? vec2(quartile_paths.x, path) : quartile_paths;
+        quartile_paths = look_up == 0   ? vec2(path, quartile_paths.y)
+                         : look_up == 1 ? vec2(quartile_paths.x, path)
+                                        : quartile_paths;
         median = cosine;
     }
     const float mean = share > 0.0f ? (end.y - start.y) / share : median;

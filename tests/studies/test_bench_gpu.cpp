@@ -52,6 +52,17 @@ void expect_positive_finite_rates(const nlohmann::json& report, const std::strin
 }
 
 // The material classes (default) and the feature variants (`--features`).
+// A small bench over the bundled materials and built kernels: queries per entry, 2 repeats.
+openpbr::host::GpuBenchOptions small_bench_options(std::size_t queries)
+{
+    openpbr::host::GpuBenchOptions options;
+    options.materials_directory = OPENPBR_MATERIALS_DIR;
+    options.kernel_directory = OPENPBR_KERNEL_DIR;
+    options.queries = queries;
+    options.repeats = 2;
+    return options;
+}
+
 class BenchGpuSet : public ::testing::TestWithParam<bool>
 {
 };
@@ -64,11 +75,7 @@ TEST_P(BenchGpuSet, ReportsPositiveFiniteDeviceTimes)
     {
         GTEST_SKIP() << "no Vulkan device: " << error;
     }
-    openpbr::host::GpuBenchOptions options;
-    options.materials_directory = OPENPBR_MATERIALS_DIR;
-    options.kernel_directory = OPENPBR_KERNEL_DIR;
-    options.queries = 256;
-    options.repeats = 2;
+    openpbr::host::GpuBenchOptions options = small_bench_options(256);
     options.paths = {"slang-spirv"};  // the CUDA program has its own check (targets_cuda_nvcc)
     options.features = GetParam();
     options.rounds = options.features ? 3 : 1;  // both the single pass and the median of several
@@ -146,11 +153,7 @@ TEST(BenchGpu, EveryPathIsTimedOrReportedWithItsReason)
     {
         GTEST_SKIP() << "no Vulkan device: " << error;
     }
-    openpbr::host::GpuBenchOptions options;
-    options.materials_directory = OPENPBR_MATERIALS_DIR;
-    options.kernel_directory = OPENPBR_KERNEL_DIR;
-    options.queries = 128;
-    options.repeats = 2;
+    openpbr::host::GpuBenchOptions options = small_bench_options(128);
     options.paths = {"slang-spirv-texture", "cuda"};
     options.entries = {"metal", "base"};  // report order: base first
     const nlohmann::json report = openpbr::host::run_gpu_bench(options);
