@@ -474,13 +474,18 @@ OPENPBR_FUNC OpenPBR_FresnelPair openpbr_base_film_estimate(OPENPBR_IN(OpenPBR_F
         int next_quartile = 0;
         for (int cut = 0; cut < OPENPBR_FILM_ESTIMATE_CRITICAL_SEGMENTS; ++cut)
         {
-            const float step = OPENPBR_FILM_ESTIMATE_CRITICAL_SEGMENTS > 2
-                                   ? float(cut) / float(OPENPBR_FILM_ESTIMATE_CRITICAL_SEGMENTS - 2)
-                                   : 0.5f;
-            const float w = OPENPBR_FILM_ESTIMATE_FIRST_CUT *
-                            pow(OPENPBR_FILM_ESTIMATE_LAST_CUT / OPENPBR_FILM_ESTIMATE_FIRST_CUT, step);
+            // The last pass only places the quartiles above the last threshold.
             const bool last = cut + 1 == OPENPBR_FILM_ESTIMATE_CRITICAL_SEGMENTS;
-            const float threshold = last ? 1.0f : sqrt(lowest * lowest + w * w);
+            float threshold = 1.0f;
+            if (!last)
+            {
+                const float step = OPENPBR_FILM_ESTIMATE_CRITICAL_SEGMENTS > 2
+                                       ? float(cut) / float(OPENPBR_FILM_ESTIMATE_CRITICAL_SEGMENTS - 2)
+                                       : 0.5f;
+                const float w = OPENPBR_FILM_ESTIMATE_FIRST_CUT *
+                                pow(OPENPBR_FILM_ESTIMATE_LAST_CUT / OPENPBR_FILM_ESTIMATE_FIRST_CUT, step);
+                threshold = sqrt(lowest * lowest + w * w);
+            }
             for (int quartile = 0; quartile < 3; ++quartile)
             {
                 if (next_quartile == quartile && quartiles[quartile] < threshold)

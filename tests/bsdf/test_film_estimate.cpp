@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -342,6 +343,46 @@ TEST(FilmEstimateAzimuth, IsotropicLobesIgnoreTheViewAzimuth)
             EXPECT_NEAR(turned.second.y, along_x.second.y, 1e-6f) << c.name << " azimuth " << azimuth;
         }
     }
+}
+
+// A film of the outside medium's IOR is no film (its upper interface vanishes), so the
+// dielectric's change is 0 for a base of IOR 1.5 and for an index-matched base (eta = 1), at
+// every roughness and view, the degenerate ones included (a mirror, view cos 0, the roughest
+// lobe). Measured largest |change| over these cases: 6.0e-8 (float rounding: one ulp of a reflectance
+// near 0.5-1); bound 1e-6.
+TEST(FilmEstimateDegenerate, IndexMatchedFilmChangesNothing)
+{
+    double largest = 0.0;
+    for (const float outside_ior : {1.0f, 1.33f, 1.6f})
+    {
+        for (const float base_ior : {1.5f, outside_ior})
+        {
+            for (const float thickness : {0.25f, 1.0f})
+            {
+                const OpenPBR_Fresnel dielectric =
+                    openpbr_add_thin_film(openpbr_make_dielectric_fresnel(base_ior / outside_ior, glm::vec3(1.0f)), 1.0f,
+                                          thickness, outside_ior, outside_ior);
+                for (const float roughness : {0.0f, 0.1f, 0.5f, 1.0f})
+                {
+                    for (const float view_cosine : {1.0f, 0.5f, 0.02f, 0.0f})
+                    {
+                        const glm::vec3 view(std::sqrt(1.0f - view_cosine * view_cosine), 0.0f, view_cosine);
+                        const OpenPBR_FresnelPair estimate = openpbr_base_film_estimate(
+                            dielectric, true, dielectric, false, view, openpbr_ggx_alpha(roughness, 0.0f));
+                        for (int channel = 0; channel < 3; ++channel)
+                        {
+                            ASSERT_TRUE(std::isfinite(estimate.first[channel]));
+                            largest = std::max(largest, double(std::abs(estimate.first[channel])));
+                            EXPECT_NEAR(estimate.first[channel], 0.0f, 1e-6f)
+                                << "outside " << outside_ior << " base " << base_ior << " d " << thickness << " r "
+                                << roughness << " cos " << view_cosine;
+                        }
+                    }
+                }
+            }
+        }
+    }
+    std::printf("  largest |change| of an index-matched film: %.3g\n", largest);
 }
 
 // A factor that is not active contributes nothing.

@@ -51,7 +51,6 @@ void expect_positive_finite_rates(const nlohmann::json& report, const std::strin
     }
 }
 
-// The material classes (default) and the feature variants (`--features`).
 // A small bench over the bundled materials and built kernels: queries per entry, 2 repeats.
 openpbr::host::GpuBenchOptions small_bench_options(std::size_t queries)
 {
@@ -63,6 +62,7 @@ openpbr::host::GpuBenchOptions small_bench_options(std::size_t queries)
     return options;
 }
 
+// The material classes (default) and the feature variants (`--features`).
 class BenchGpuSet : public ::testing::TestWithParam<bool>
 {
 };
