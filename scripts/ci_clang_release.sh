@@ -34,7 +34,7 @@ tests=(
   "test_parameter_table:*"
   "test_material_library:*"
   "test_established_api:*"
-  "test_stability:StabilityCorpus.*:*cpu*"
+  "test_stability_cpu:*"
 )
 
 # shellcheck source=scripts/ci_test_subset.sh

@@ -25,13 +25,18 @@ tests=(
   "test_volume:*"
   "test_fuzz_lobe:*"
   "test_input_contract:*"
-  "test_stability:StabilityCorpus.*:*cpu*"
+  "test_stability_cpu:*"
 )
 
 sanitizers="-fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer"
 # shellcheck source=scripts/ci_test_subset.sh
 source "$repo_root/scripts/ci_test_subset.sh"
-ci_configure_clang "$build_dir" RelWithDebInfo -DCMAKE_CXX_FLAGS="$sanitizers" -DCMAKE_EXE_LINKER_FLAGS="$sanitizers"
+# Debug information: line tables only (-gline-tables-only), which is what the sanitizers'
+# reports print (function, file and line of every frame, inlined ones included); full -g made
+# each translation unit about 9 % slower to compile (stability.cpp 10.4 s against 9.5 s of CPU,
+# 2026-11-27) for variable and type information no report uses.
+ci_configure_clang "$build_dir" RelWithDebInfo -DCMAKE_CXX_FLAGS="$sanitizers" -DCMAKE_EXE_LINKER_FLAGS="$sanitizers" \
+  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -gline-tables-only -DNDEBUG"
 export ASAN_OPTIONS=${ASAN_OPTIONS:-abort_on_error=1:detect_leaks=1:strict_string_checks=1}
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-halt_on_error=1:print_stacktrace=1}
 ci_build_and_run_tests ci_sanitizers "$build_dir" "$jobs" "${tests[@]}"

@@ -7,11 +7,8 @@
 #include <filesystem>
 #include <limits>
 #include <map>
-#include <random>
 #include <sstream>
 #include <stdexcept>
-
-#include <tbb/parallel_for.h>
 
 #include "host/checks/conformance_cpu_variants.h"
 #include "host/checks/execution_path.h"
@@ -22,23 +19,7 @@
 #include "host/support/stopwatch.h"
 #include "slang/openpbr.h"
 
-// The CPU build of the shared kernel body: the macros read and write these arrays, which the
-// runner points at the batch before the parallel loop (read-only, and each query writes only
-// its own result slots).
-namespace openpbr::host::cpu_kernel {
-const float* queries = nullptr;
-const float* materials = nullptr;
-float* results = nullptr;
-}  // namespace openpbr::host::cpu_kernel
-#define OPENPBR_QUERY_READ(index) ::openpbr::host::cpu_kernel::queries[index]
-#define OPENPBR_MATERIAL_READ(index) ::openpbr::host::cpu_kernel::materials[index]
-#define OPENPBR_RESULT_WRITE(index, value) ::openpbr::host::cpu_kernel::results[index] = (value)
-#include "targets/kernels/openpbr_conformance_kernel.h"
-
 namespace openpbr::host {
-
-static_assert(conformance_query_floats == OPENPBR_QUERY_FLOATS && conformance_result_floats == OPENPBR_RESULT_FLOATS,
-              "conformance.h's record sizes are the kernel's");
 
 #if !OPENPBR_CONFORMANCE_CPU_FMA_BUILT
 std::vector<float> run_conformance_cpu_fma(const std::vector<float>&, const std::vector<float>&)
@@ -144,13 +125,13 @@ GpuBatchResult dispatch_conformance(ComputePipeline& pipeline, const std::vector
                                     const std::vector<float>& materials, int repeats,
                                     const ConformanceDispatchSettings& settings = {})
 {
-    const std::size_t query_count = queries.size() / OPENPBR_QUERY_FLOATS;
+    const std::size_t query_count = queries.size() / conformance_query_floats;
 
     std::vector<std::byte> lut_bytes = to_bytes(shipped_lut());
     std::vector<std::byte> fuzz_bytes = to_bytes(shipped_fuzz_ltc());
     std::vector<std::byte> query_bytes = to_bytes(queries);
     std::vector<std::byte> material_bytes = to_bytes(materials);
-    std::vector<std::byte> result_bytes(query_count * OPENPBR_RESULT_FLOATS * sizeof(float));
+    std::vector<std::byte> result_bytes(query_count * conformance_result_floats * sizeof(float));
     std::vector<std::byte> parameter_bytes =
         to_bytes(std::vector<std::uint32_t>{std::uint32_t(query_count), settings.mode, 0, 0});
     std::vector<BufferBinding> buffers = {
@@ -228,14 +209,14 @@ double queries_per_second(const PathRun& run, std::size_t query_count)
 void compare_pooled(ConformancePathResult& result, const std::vector<float>& queries, const std::vector<float>& gpu_results,
                     const std::vector<float>& cpu_results)
 {
-    const std::size_t query_count = queries.size() / OPENPBR_QUERY_FLOATS;
+    const std::size_t query_count = queries.size() / conformance_query_floats;
     std::vector<double> errors;
     errors.reserve(query_count * (eval_slot_end + sample_slot_end - sample_slot_begin + 3));
     double worst = -1.0;
     for (std::size_t query = 0; query < query_count; ++query)
     {
-        const float* gpu = gpu_results.data() + query * OPENPBR_RESULT_FLOATS;
-        const float* cpu = cpu_results.data() + query * OPENPBR_RESULT_FLOATS;
+        const float* gpu = gpu_results.data() + query * conformance_result_floats;
+        const float* cpu = cpu_results.data() + query * conformance_result_floats;
         const bool lobes_agree = gpu[lobe_type_slot] == cpu[lobe_type_slot];
         auto compare = [&](int begin, int end) {
             for (int slot = begin; slot < end; ++slot)
@@ -247,7 +228,7 @@ void compare_pooled(ConformancePathResult& result, const std::vector<float>& que
                     worst = error;
                     std::ostringstream where;
                     where << conformance_slot_name(slot) << " of query " << query << " (material "
-                          << queries[query * OPENPBR_QUERY_FLOATS] << "): gpu " << gpu[slot] << ", cpu " << cpu[slot];
+                          << queries[query * conformance_query_floats] << "): gpu " << gpu[slot] << ", cpu " << cpu[slot];
                     result.worst_output = where.str();
                 }
             }
@@ -345,15 +326,15 @@ bool is_delta_lobe(float lobe_type) { return (std::uint32_t(lobe_type) & OPENPBR
 void compare_with_cpu(ConformancePathResult& result, const std::vector<float>& queries, const std::vector<float>& materials,
                       const std::vector<float>& gpu_results, const std::vector<float>& cpu_results)
 {
-    const std::size_t query_count = queries.size() / OPENPBR_QUERY_FLOATS;
+    const std::size_t query_count = queries.size() / conformance_query_floats;
     compare_pooled(result, queries, gpu_results, cpu_results);
 
     // The CPU at each continuous GPU sample's direction (slots 0-6: eval and pdf there).
     std::vector<float> at_gpu_direction_queries = queries;
     for (std::size_t query = 0; query < query_count; ++query)
     {
-        const float* gpu = gpu_results.data() + query * OPENPBR_RESULT_FLOATS;
-        float* light = at_gpu_direction_queries.data() + query * OPENPBR_QUERY_FLOATS + 4;
+        const float* gpu = gpu_results.data() + query * conformance_result_floats;
+        float* light = at_gpu_direction_queries.data() + query * conformance_query_floats + 4;
         if (gpu[lobe_type_slot] != 0.0f && !is_delta_lobe(gpu[lobe_type_slot]))
         {
             std::copy(gpu + sample_slot_begin, gpu + sample_slot_begin + 3, light);
@@ -411,10 +392,10 @@ void compare_with_cpu(ConformancePathResult& result, const std::vector<float>& q
     std::size_t mismatches = 0;
     for (std::size_t query = 0; query < query_count; ++query)
     {
-        const float* gpu = gpu_results.data() + query * OPENPBR_RESULT_FLOATS;
-        const float* cpu = cpu_results.data() + query * OPENPBR_RESULT_FLOATS;
-        const float* cpu_there = at_gpu_direction.data() + query * OPENPBR_RESULT_FLOATS;
-        const std::size_t record = query * OPENPBR_RESULT_FLOATS;
+        const float* gpu = gpu_results.data() + query * conformance_result_floats;
+        const float* cpu = cpu_results.data() + query * conformance_result_floats;
+        const float* cpu_there = at_gpu_direction.data() + query * conformance_result_floats;
+        const std::size_t record = query * conformance_result_floats;
         // The largest change of a value over the nudged runs; `value(run)` reads it from one.
         auto largest_change = [&](double cpu_value, const auto& value) {
             double change = 0.0;
@@ -524,12 +505,12 @@ SpecializedConformanceRun run_conformance_gpu_specialized(const std::string& pat
     const VulkanPathKernel& path = vulkan_path_kernel(path_name);
     SpecializedPipelineCache cache(context, conformance_pipeline_description(path, kernel_directory));
     const std::vector<float> packed = pack_materials(materials);
-    const std::size_t query_count = queries.size() / OPENPBR_QUERY_FLOATS;
+    const std::size_t query_count = queries.size() / conformance_query_floats;
     // Queries grouped by the toggle set of the pipeline that runs them.
     std::map<std::uint32_t, std::vector<std::size_t>> groups;
     for (std::size_t query = 0; query < query_count; ++query)
     {
-        const std::size_t material = std::size_t(queries[query * OPENPBR_QUERY_FLOATS]);
+        const std::size_t material = std::size_t(queries[query * conformance_query_floats]);
         if (material >= materials.size())
         {
             throw std::invalid_argument("query " + std::to_string(query) + " names material " + std::to_string(material) +
@@ -538,14 +519,14 @@ SpecializedConformanceRun run_conformance_gpu_specialized(const std::string& pat
         groups[pipeline_mask ? *pipeline_mask : required_feature_mask(materials[material])].push_back(query);
     }
     SpecializedConformanceRun run;
-    run.results.assign(query_count * OPENPBR_RESULT_FLOATS, 0.0f);
+    run.results.assign(query_count * conformance_result_floats, 0.0f);
     for (const auto& [mask, members] : groups)
     {
-        std::vector<float> group_queries(members.size() * OPENPBR_QUERY_FLOATS);
+        std::vector<float> group_queries(members.size() * conformance_query_floats);
         for (std::size_t i = 0; i < members.size(); ++i)
         {
-            std::memcpy(&group_queries[i * OPENPBR_QUERY_FLOATS], &queries[members[i] * OPENPBR_QUERY_FLOATS],
-                        OPENPBR_QUERY_FLOATS * sizeof(float));
+            std::memcpy(&group_queries[i * conformance_query_floats], &queries[members[i] * conformance_query_floats],
+                        conformance_query_floats * sizeof(float));
         }
         const std::size_t builds_before = cache.build_count();
         ComputePipeline& pipeline = cache.pipeline(mask);
@@ -554,8 +535,8 @@ SpecializedConformanceRun run_conformance_gpu_specialized(const std::string& pat
         const GpuBatchResult batch = dispatch_conformance(pipeline, group_queries, packed, repeats, path_settings);
         for (std::size_t i = 0; i < members.size(); ++i)
         {
-            std::memcpy(&run.results[members[i] * OPENPBR_RESULT_FLOATS], &batch.results[i * OPENPBR_RESULT_FLOATS],
-                        OPENPBR_RESULT_FLOATS * sizeof(float));
+            std::memcpy(&run.results[members[i] * conformance_result_floats], &batch.results[i * conformance_result_floats],
+                        conformance_result_floats * sizeof(float));
         }
         SpecializedPipelineTiming timing;
         timing.mask = mask;
@@ -582,7 +563,7 @@ std::vector<std::string> cpu_conformance_paths() { return {"cpu-fma", "cpu-fast"
 std::vector<float> nudge_random_numbers(const std::vector<float>& queries)
 {
     std::vector<float> nudged = queries;
-    for (std::size_t record = 0; record + OPENPBR_QUERY_FLOATS <= nudged.size(); record += OPENPBR_QUERY_FLOATS)
+    for (std::size_t record = 0; record + conformance_query_floats <= nudged.size(); record += conformance_query_floats)
     {
         for (int k = 7; k < 10; ++k)
         {
@@ -603,7 +584,7 @@ std::vector<float> nudge_directions(const std::vector<float>& queries, int patte
         {1, -1, 1, -1, 1, -1}, {1, 1, -1, -1, -1, 1}, {-1, 1, 1, 1, -1, -1}, {1, 1, 1, -1, 1, 1}};
     const float* sign = signs[std::size_t(pattern) % conformance_nudge_patterns];
     std::vector<float> nudged = queries;
-    for (std::size_t record = 0; record + OPENPBR_QUERY_FLOATS <= nudged.size(); record += OPENPBR_QUERY_FLOATS)
+    for (std::size_t record = 0; record + conformance_query_floats <= nudged.size(); record += conformance_query_floats)
     {
         for (int k = 1; k < 7; ++k)
         {
@@ -650,56 +631,6 @@ std::vector<Material> conformance_materials(const std::vector<Material>& library
         materials.push_back(everything);
     }
     return materials;
-}
-
-std::vector<float> make_queries(std::size_t query_count, std::size_t material_count, std::uint64_t seed)
-{
-    std::mt19937_64 generator(seed);
-    std::uniform_real_distribution<float> uniform(0.0f, 1.0f);
-    auto unit_sphere = [&]() {
-        const float z = 1.0f - 2.0f * uniform(generator);
-        const float radius = std::sqrt(std::max(0.0f, 1.0f - z * z));
-        const float phi = 6.2831853f * uniform(generator);
-        return glm::vec3(radius * std::cos(phi), radius * std::sin(phi), z);
-    };
-    std::vector<float> queries(query_count * OPENPBR_QUERY_FLOATS);
-    for (std::size_t query = 0; query < query_count; ++query)
-    {
-        float* out = queries.data() + query * OPENPBR_QUERY_FLOATS;
-        out[0] = float(query % std::max<std::size_t>(material_count, 1));
-        // Views mostly above the surface (where most shading happens), some from below.
-        glm::vec3 view = unit_sphere();
-        if (uniform(generator) < 0.8f)
-        {
-            view.z = std::fabs(view.z);
-        }
-        const glm::vec3 light = unit_sphere();
-        out[1] = view.x, out[2] = view.y, out[3] = view.z;
-        out[4] = light.x, out[5] = light.y, out[6] = light.z;
-        // u in [0, 1): the float distribution can round up to 1.
-        for (int k = 7; k < 10; ++k)
-        {
-            out[k] = std::min(uniform(generator), 0.99999994f);
-        }
-        // Exterior IOR: mostly air; one query in eight under water (1.33), one in eight inside
-        // glass (1.5), so the relative IOR of every interface also falls below 1.
-        const float exterior_choice = uniform(generator);
-        out[10] = exterior_choice < 0.75f ? 1.0f : (exterior_choice < 0.875f ? 1.33f : 1.5f);
-    }
-    return queries;
-}
-
-std::vector<float> run_conformance_cpu(const std::vector<float>& queries, const std::vector<float>& materials)
-{
-    const std::size_t query_count = queries.size() / OPENPBR_QUERY_FLOATS;
-    std::vector<float> results(query_count * OPENPBR_RESULT_FLOATS, 0.0f);
-    cpu_kernel::queries = queries.data();
-    cpu_kernel::materials = materials.data();
-    cpu_kernel::results = results.data();
-    tbb::parallel_for(std::size_t(0), query_count, [](std::size_t query) {
-        openpbr::openpbr_conformance_run_query(unsigned(query), OPENPBR_CONFORMANCE_MODE_ALL);
-    });
-    return results;
 }
 
 ConformanceReport run_conformance(const std::vector<Material>& materials, const ConformanceOptions& options)
@@ -947,32 +878,6 @@ std::string to_text(const ConformanceReport& report)
              << path.p999_relative_error << ", worst: " << path.worst_output << "\n";
     }
     return text.str();
-}
-
-const char* conformance_slot_name(int slot)
-{
-    static const char* names[] = {"eval.diffuse.r",
-                                  "eval.diffuse.g",
-                                  "eval.diffuse.b",
-                                  "eval.specular.r",
-                                  "eval.specular.g",
-                                  "eval.specular.b",
-                                  "pdf",
-                                  "sample.direction.x",
-                                  "sample.direction.y",
-                                  "sample.direction.z",
-                                  "sample.weight.diffuse.r",
-                                  "sample.weight.diffuse.g",
-                                  "sample.weight.diffuse.b",
-                                  "sample.weight.specular.r",
-                                  "sample.weight.specular.g",
-                                  "sample.weight.specular.b",
-                                  "sample.pdf",
-                                  "sample.lobe_type",
-                                  "emission.r",
-                                  "emission.g",
-                                  "emission.b"};
-    return slot >= 0 && slot < 21 ? names[slot] : "unused";
 }
 
 }  // namespace openpbr::host

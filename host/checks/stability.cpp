@@ -20,7 +20,6 @@
 
 #include "fuzz/fuzz_input_layout.h"
 #include "host/checks/conformance.h"
-#include "host/checks/execution_path.h"
 #include "host/scene/material_library.h"
 #include "host/support/directional_albedo.h"
 #include "host/scene/parameter_table.h"
@@ -47,7 +46,7 @@ using Inputs = openpbr::OpenPBR_ResolvedInputs;
 constexpr float denormal_value = 1e-40f;
 
 // Record sizes of targets/kernels/openpbr_conformance_kernel.h (OPENPBR_QUERY_FLOATS and
-// OPENPBR_RESULT_FLOATS; that header's body is the CPU kernel of conformance.cpp and is not
+// OPENPBR_RESULT_FLOATS; that header's body is the CPU kernel of conformance_cpu.cpp and is not
 // included twice). run_path checks the result size against them.
 constexpr std::size_t query_floats = 11;
 constexpr std::size_t result_floats = 24;
@@ -479,7 +478,7 @@ StabilityCaseResult finish_case(const std::string& name, const CaseAccumulator& 
 }
 
 // Runs one path over every case in batches of at most `batch_queries` queries.
-using Executor = std::function<std::vector<float>(const std::vector<float>& queries, const std::vector<float>& materials)>;
+using Executor = StabilityExecutor;
 
 // 1.3M queries: 124.8 MB of results, under lavapipe's 128 MiB storage-buffer range.
 constexpr std::size_t batch_queries = 1300000;
@@ -697,88 +696,28 @@ bool has_violations(const StabilityReport& report)
     });
 }
 
-StabilityReport run_stability(const std::vector<StabilityCase>& cases, const StabilityOptions& options)
+StabilityPathResult run_stability_path(const std::string& name, const StabilityExecutor& execute,
+                                       const std::vector<StabilityCase>& cases, std::size_t samples_per_case,
+                                       std::uint64_t seed)
+{
+    return run_path(name, execute, cases, pack_cases(cases), samples_per_case, seed);
+}
+
+StabilityReport run_stability_cpu(const std::vector<StabilityCase>& cases, const StabilityOptions& options,
+                                  bool include_cpu_path)
 {
     StabilityReport report;
     report.case_count = cases.size();
     report.samples_per_case = options.samples_per_case;
     report.gpu_samples_per_case = options.gpu_samples_per_case ? options.gpu_samples_per_case : options.samples_per_case;
     report.seed = options.seed;
-    const std::vector<float> materials = pack_cases(cases);
-
-    std::vector<std::string> wanted = options.paths;
-    if (wanted.empty())
-    {
-        wanted.push_back("cpu");
-        for (const std::string& name : known_conformance_paths())
-        {
-            wanted.push_back(name);
-        }
-    }
-    const std::vector<std::string> known_gpu = known_conformance_paths();
-    for (const std::string& name : wanted)
-    {
-        if (name != "cpu" && std::find(known_gpu.begin(), known_gpu.end(), name) == known_gpu.end())
-        {
-            throw std::invalid_argument("unknown path '" + name + "' (known: cpu and the conformance GPU paths)");
-        }
-    }
-
-    if (std::find(wanted.begin(), wanted.end(), "cpu") != wanted.end())
+    if (include_cpu_path)
     {
         StabilityPathResult cpu =
-            run_path("cpu", run_conformance_cpu, cases, materials, options.samples_per_case, options.seed);
+            run_path("cpu", run_conformance_cpu, cases, pack_cases(cases), options.samples_per_case, options.seed);
         cpu.note = "CPU build (C++ single source)";
         report.paths.push_back(std::move(cpu));
     }
-
-    // Every GPU path through the one mechanism (host/checks/execution_path.h); one that cannot
-    // run here (no device, not built) is reported as skipped with the reason.
-    ExecutionPathSettings settings;
-    settings.kernel_directory = options.kernel_directory;
-    settings.validation = options.validation;
-    ExecutionPaths paths(settings);
-    for (const std::string& name : known_gpu)
-    {
-        if (std::find(wanted.begin(), wanted.end(), name) == wanted.end())
-        {
-            continue;
-        }
-        ExecutionPath& path = paths.path(name);
-        std::string device;
-        std::size_t validation_messages = 0;
-        const Executor execute = [&path, &device, &validation_messages](const std::vector<float>& queries,
-                                                                        const std::vector<float>& packed) {
-            PathBatch batch{queries, packed};
-            // The report needs each batch's results, not its steady-state dispatch time.
-            batch.repeats = 1;
-            PathRun run = path.run(batch);
-            device = run.device;
-            validation_messages += run.validation_messages.size();
-            return std::move(run.results);
-        };
-        try
-        {
-            const std::string reason = path.unavailable_reason();
-            if (!reason.empty())
-            {
-                throw PathUnavailable(reason);
-            }
-            StabilityPathResult result =
-                run_path(name, execute, cases, materials, report.gpu_samples_per_case, options.seed);
-            result.note = device;
-            result.validation_messages = validation_messages;
-            report.paths.push_back(std::move(result));
-        }
-        catch (const PathUnavailable& unavailable)
-        {
-            StabilityPathResult skipped;
-            skipped.name = name;
-            skipped.note = std::string("skipped: ") + unavailable.what();
-            report.paths.push_back(std::move(skipped));
-        }
-    }
-
     for (const StabilityCase& stability_case : cases)
     {
         report.volumes.push_back(check_volume(stability_case));

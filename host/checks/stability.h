@@ -16,6 +16,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -142,7 +143,26 @@ struct StabilityReport
 // length, or a volume violation.
 bool has_violations(const StabilityReport& report);
 
+// The corpus on the paths options.paths names: the CPU build and the GPU paths
+// (host/checks/execution_path.h), each through the same query stream (stability_paths.cpp).
 StabilityReport run_stability(const std::vector<StabilityCase>& cases, const StabilityOptions& options);
+
+// The CPU build alone (options.paths is not read): the report run_stability gives for
+// options.paths = {"cpu"}, in a program without the GPU paths (library openpbr_host_core, e.g.
+// tests/checks/test_stability_cpu.cpp). include_cpu_path false: the report's header and the
+// volume checks only (run_stability, where the paths asked for leave the CPU out).
+StabilityReport run_stability_cpu(const std::vector<StabilityCase>& cases, const StabilityOptions& options,
+                                  bool include_cpu_path = true);
+
+// One path's batches: queries and packed materials in, results out, laid out as
+// run_conformance_cpu's (conformance.h), e.g. run_conformance_cpu itself.
+using StabilityExecutor =
+    std::function<std::vector<float>(const std::vector<float>& queries, const std::vector<float>& materials)>;
+// One path over every case: its samples_per_case queries per case of the stream `seed` gives
+// (a pure function of seed, case and query), in batches under lavapipe's storage-buffer range.
+StabilityPathResult run_stability_path(const std::string& name, const StabilityExecutor& execute,
+                                       const std::vector<StabilityCase>& cases, std::size_t samples_per_case,
+                                       std::uint64_t seed);
 
 // JSON: {"cases": N, "samples_per_case": n, "seed": s, "paths": [{"name", "executed", "note",
 // "nonfinite", "negative", "max_mean_weight", "max_weight", "cases": [...]}], "volume": {...}}.

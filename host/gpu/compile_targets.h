@@ -41,6 +41,10 @@ struct CompileTargetsOptions
     // Toggles folded when generated (OPENPBR_FEATURE_BIT_*), e.g. scene_feature_mask(materials);
     // unset: every toggle stays a run-time constant.
     std::optional<std::uint32_t> feature_mask;
+    // The conformance kernels only (each target's conformance.slang.<ext>, and for WGSL
+    // conformance.library.wgsl), e.g. for a check that runs them; false (the default): every file
+    // listed above.
+    bool conformance_kernels_only = false;
 };
 
 // One file written, with the wall time of the command that wrote it.

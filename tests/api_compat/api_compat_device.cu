@@ -1,11 +1,15 @@
 // The api_compat program run on a CUDA device and on the host from the same translation unit
 // (the headers' CUDA backend, __host__ __device__ functions): every result finite on both, and
-// the device's results within float tolerance of the host's. A run-time check for machines with
-// a GPU (api_compat.cu is the compile-only check): nvcc -std=c++17 -arch=sm_90 -I . -o
-// api_compat_device tests/api_compat/api_compat_device.cu && ./api_compat_device
+// the device's results within float tolerance of the host's. Compiled everywhere nvcc is
+// (tests/api_compat/check_api_compat.sh cuda: -rdc, every warning an error), run on machines
+// with a GPU: nvcc -std=c++17 -rdc=true -arch=sm_90 -I . -o api_compat_device
+// tests/api_compat/api_compat_device.cu && ./api_compat_device
 #include <glm/glm.hpp>
 
 #include "slang/openpbr.h"
+#if !defined(OPENPBR_LANGUAGE_TARGET_CUDA)
+#error "the interop router did not pick the CUDA backend under nvcc"
+#endif
 
 #include <algorithm>
 #include <cmath>

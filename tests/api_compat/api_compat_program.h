@@ -2,7 +2,7 @@
 // below uses the names and signatures of that API (README "Two API forms"), nothing of the
 // project form. The same source is compiled as C++ (api_compat_main.cpp, -Wall -Wextra
 // -Werror, run), GLSL (api_compat.comp), Slang (api_compat.slang, `import openpbr;`), HLSL
-// (api_compat.hlsl over the generated openpbr.hlsl), CUDA (api_compat.cu, nvcc) and Metal
+// (api_compat.hlsl over the generated openpbr.hlsl), CUDA (api_compat_device.cu, nvcc) and Metal
 // (Slang's Metal output of api_compat.slang); tests/api_compat/CMakeLists.txt runs them.
 //
 // The includer defines API_COMPAT_WRITE(index, value), a float store into its result buffer,
