@@ -44,6 +44,8 @@ const USAGE = `usage: node targets/slangc.mjs [options] file.slang...
   -module FILE    load FILE first as module <basename>, and link it into the program
   -o PATH         output file (default: stdout for text targets); a directory for
                   several targets, written as PATH/<basename>.<ext>
+  -name NAME      with several targets: PATH/NAME.<ext> instead, e.g. -name
+                  conformance.slang writes PATH/conformance.slang.spv, ...
   -depfile FILE   write a Makefile-style depfile of every source file read
   -q              quiet: no notes on stderr, only errors (Slang's wasm API reports
                   warnings only together with an error)
@@ -59,7 +61,7 @@ class CompileError extends Error {}
 function parseArgs(argv) {
   const opts = {
     targets: [], entries: [], stage: null, defines: [], includeDirs: [], modules: [],
-    output: null, depfile: null, quiet: false, files: [],
+    output: null, name: null, depfile: null, quiet: false, files: [],
   };
   const takeValue = (i, flag) => {
     if (i + 1 >= argv.length) throw new UsageError(`${flag} needs a value`);
@@ -83,6 +85,7 @@ function parseArgs(argv) {
       case '-I': opts.includeDirs.push(takeValue(i++, arg)); break;
       case '-module': opts.modules.push(takeValue(i++, arg)); break;
       case '-o': opts.output = takeValue(i++, arg); break;
+      case '-name': opts.name = takeValue(i++, arg); break;
       case '-depfile': opts.depfile = takeValue(i++, arg); break;
       case '-q': opts.quiet = true; break;
       default:
@@ -98,6 +101,7 @@ function parseArgs(argv) {
     throw new UsageError('SPIR-V is binary: give -o FILE');
   }
   if (opts.depfile && !opts.output) throw new UsageError('-depfile needs -o');
+  if (opts.name !== null && opts.targets.length < 2) throw new UsageError('-name needs several targets');
   return opts;
 }
 
@@ -428,7 +432,7 @@ function spirvForValidators(spirv) {
 
 function outputPathFor(target, opts) {
   if (opts.targets.length === 1) return opts.output;
-  return path.join(opts.output, `${moduleNameOf(opts.files[0])}.${TARGETS[target][1]}`);
+  return path.join(opts.output, `${opts.name ?? moduleNameOf(opts.files[0])}.${TARGETS[target][1]}`);
 }
 
 function writeOutput(file, data) {
