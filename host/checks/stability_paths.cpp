@@ -68,8 +68,7 @@ StabilityReport run_stability(const std::vector<StabilityCase>& cases, const Sta
             {
                 throw PathUnavailable(reason);
             }
-            StabilityPathResult result =
-                run_stability_path(name, execute, cases, report.gpu_samples_per_case, options.seed);
+            StabilityPathResult result = run_stability_path(name, execute, cases, report.gpu_samples_per_case, options.seed);
             result.note = device;
             result.validation_messages = validation_messages;
             report.paths.push_back(std::move(result));
