@@ -349,10 +349,11 @@ OPENPBR_FUNC float openpbr_ggx_lobe_dielectric_reflection_albedo(float mu, float
 #endif
 // Relative width below which a lobe without a critical cosine is one segment at its median
 // (see the method above): (Q(3/4) - Q(1/4)) < width Q(1/2), e.g. 0.05 (the default: roughness
-// 0.3 at view cosines above about 0.9, roughness 0.2 above about 0.75, roughness 0.1 at any
-// view cosine down to about 0.5; over the dense reference's 10,980 stacks of roughness 0.1-0.8
-// (docs/thin-film-estimate.md) no case moved past 0.005 on the gain side) or 0 (always the
-// two halves). 0.1 let 6 more of those cases underestimate the change by more than 0.005.
+// 0.1 down to view cosines of about 0.3, roughness 0.2 down to about 0.7, roughness 0.3 from
+// about 0.9; over the dense reference's 10,980 stacks of roughness 0.1-0.8
+// (docs/thin-film-estimate.md) no case moved past 0.005 on the gain side, and no largest
+// error moved) or 0 (always the two halves). 0.1 let 15 more of those cases underestimate the
+// change by more than 0.005.
 #ifndef OPENPBR_FILM_ESTIMATE_NARROW_WIDTH
 #define OPENPBR_FILM_ESTIMATE_NARROW_WIDTH 0.05f
 #endif
