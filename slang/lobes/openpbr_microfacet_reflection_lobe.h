@@ -297,7 +297,13 @@ OPENPBR_FUNC float openpbr_ggx_lobe_dielectric_reflection_albedo(float mu, float
 //    segments of equal share. A film nearly index-matched to the medium above it (film 1.2 under
 //    a half coat of IOR 1.3 in air: n_o 1.15) has the sqrt-like bend of a critical cosine just
 //    below 0 (n_f cos_f = sqrt(n_f^2 - n_o^2 + n_o^2 c^2)): two halves erred by 0.042 there at
-//    view cosine 0.1 (the furnace's worst losses, 0.960), four segments by 0.011.
+//    view cosine 0.1 (the furnace's worst losses, 0.960), four segments by 0.011. A narrow lobe
+//    there, whose interquartile range of c is below OPENPBR_FILM_ESTIMATE_NARROW_WIDTH times its
+//    median, is one segment evaluated at its median (one film evaluation instead of two, as the
+//    mirror limit's one at the view): the film's amplitudes and the plain Fresnel factor change
+//    on the scale of c itself (their derivatives grow like 1 / c towards grazing), so a lobe
+//    narrow against its median cosine sees them nearly linear, and its fringes are averaged by
+//    the lobe's path spread as any segment's are (Belcour & Barla 2017's Gaussian phase average).
 // Segments at or below c* are evaluated at their median cosine (the film's quantities change
 // like sqrt there, and quantiles, unlike means, follow any monotonic change of variable), the
 // others at their mean. The film's phase varies across a segment; averaging e^{i m delta} over it
@@ -340,6 +346,19 @@ OPENPBR_FUNC float openpbr_ggx_lobe_dielectric_reflection_albedo(float mu, float
 // issue's 20,466 budget).
 #ifndef OPENPBR_FILM_ESTIMATE_PLAIN_SEGMENTS
 #define OPENPBR_FILM_ESTIMATE_PLAIN_SEGMENTS 2
+#endif
+// Relative width below which a lobe without a critical cosine is one segment at its median
+// (see the method above): (Q(3/4) - Q(1/4)) < width Q(1/2), e.g. 0.05 (the default: roughness
+// 0.1 down to view cosines of about 0.3, roughness 0.2 down to about 0.7, roughness 0.3 from
+// about 0.9; over the dense reference's 10,980 stacks of roughness 0.1-0.8
+// (docs/thin-film-estimate.md) no case moved past 0.005 on the gain side, and no largest
+// error moved) or 0 (always the two halves). 0.1 let 15 more of those cases underestimate the
+// change by more than 0.005.
+#ifndef OPENPBR_FILM_ESTIMATE_NARROW_WIDTH
+#define OPENPBR_FILM_ESTIMATE_NARROW_WIDTH 0.05f
+#endif
+#if (OPENPBR_LUT_FILM_QUANTILE_SIZE - 1) % 4 != 0
+#error "table 5's probability nodes must include the quartiles (OPENPBR_LUT_FILM_QUANTILE_SIZE = 4 k + 1)"
 #endif
 #if OPENPBR_FILM_ESTIMATE_EVANESCENT_SEGMENTS < 1 || OPENPBR_FILM_ESTIMATE_PLAIN_SEGMENTS < 1
 #error "OPENPBR_FILM_ESTIMATE_EVANESCENT_SEGMENTS and OPENPBR_FILM_ESTIMATE_PLAIN_SEGMENTS must be at least 1"
@@ -420,11 +439,23 @@ OPENPBR_FUNC OpenPBR_FresnelPair openpbr_base_film_estimate(OPENPBR_IN(OpenPBR_F
     const bool at_view = openpbr_ggx_is_delta(alpha) || OPENPBR_FILM_ESTIMATE_METHOD == OPENPBR_FILM_ESTIMATE_AT_VIEW;
     const OpenPBR_FilmLobeTable table =
         openpbr_film_lobe_table(view.z, sqrt(0.5f * (alpha.x * alpha.x + alpha.y * alpha.y)));
+    // The lobe's quartiles: the cuts past c*, and the width and the median of a narrow lobe
+    // without a critical cosine. Table 5's probability nodes include them (33 nodes: p = 1/4 at
+    // node 8), so they are node reads, without the cell model of openpbr_film_lobe_quantile.
+    float quartiles[3];
+    for (int quartile = 0; quartile < 3; ++quartile)
+    {
+        quartiles[quartile] =
+            at_view ? view.z
+                    : openpbr_film_lobe_node(table, (quartile + 1) * ((OPENPBR_LUT_FILM_QUANTILE_SIZE - 1) / 4), 0);
+    }
+    const bool narrow = !at_view && lowest <= 0.0f &&
+                        quartiles[2] - quartiles[0] < OPENPBR_FILM_ESTIMATE_NARROW_WIDTH * quartiles[1];
     // The cosines where the segments end, in increasing order (the last one, 2, above every
     // cosine: the whole lobe), see the method above.
     float cuts[OPENPBR_FILM_ESTIMATE_MAX_SEGMENTS];
     int cut_count = 0;
-    if (at_view)
+    if (at_view || narrow)
     {
         cuts[0] = 2.0f;
         cut_count = 1;
@@ -465,12 +496,7 @@ OPENPBR_FUNC OpenPBR_FresnelPair openpbr_base_film_estimate(OPENPBR_IN(OpenPBR_F
             ++cut_count;
         }
         // Past c*: the thresholds in w and the lobe's quartiles that lie past c*, merged in
-        // increasing order (one quantile look-up site).
-        float quartiles[3];
-        for (int quartile = 0; quartile < 3; ++quartile)
-        {
-            quartiles[quartile] = openpbr_film_lobe_quantile(table, 0.25f * float(quartile + 1));
-        }
+        // increasing order.
         int next_quartile = 0;
         for (int cut = 0; cut < OPENPBR_FILM_ESTIMATE_CRITICAL_SEGMENTS; ++cut)
         {
@@ -514,7 +540,7 @@ OPENPBR_FUNC OpenPBR_FresnelPair openpbr_base_film_estimate(OPENPBR_IN(OpenPBR_F
     for (int index = 0; index < cut_count; ++index)
     {
         const float cut = cuts[index];
-        vec2 end = at_view ? vec2(1.0f, view.z) : openpbr_film_lobe_cumulative(table, cut);
+        vec2 end = at_view || narrow ? vec2(1.0f, view.z) : openpbr_film_lobe_cumulative(table, cut);
         end = end.x > start.x ? end : start;
         const float share = end.x - start.x;
         // Below the base's critical cosine the dielectric's change is 0 (total reflection, filmed
@@ -525,9 +551,15 @@ OPENPBR_FUNC OpenPBR_FresnelPair openpbr_base_film_estimate(OPENPBR_IN(OpenPBR_F
             // Segments at or below c* at their median (the evanescent film and the metal's part
             // below the base's critical cosine), the others at their mean.
             // (not "point": an HLSL keyword)
-            const vec2 where = at_view ? vec2(view.z, 0.0f)
-                                       : openpbr_film_segment_point(table, start, end, lowest > 0.0f && cut <= lowest,
-                                                                    thickness_um, film_offset, n_o);
+            // A narrow lobe at its median with the spread of its quartiles' paths, as
+            // openpbr_film_segment_point gives it for the whole lobe, from the quartiles above.
+            const vec2 where =
+                at_view  ? vec2(view.z, 0.0f)
+                : narrow ? vec2(quartiles[1], abs(openpbr_film_optical_path(thickness_um, film_offset, n_o, quartiles[2]) -
+                                                  openpbr_film_optical_path(thickness_um, film_offset, n_o, quartiles[0])) *
+                                                  (1.0f / 1.349f))
+                         : openpbr_film_segment_point(table, start, end, lowest > 0.0f && cut <= lowest, thickness_um,
+                                                      film_offset, n_o);
             const OpenPBR_FresnelPair pair =
                 openpbr_fresnel_evaluate_base_pair_spread(untinted, with_dielectric, metal, metal_filmed, where.x, where.y);
             if (with_dielectric)
