@@ -446,11 +446,10 @@ OPENPBR_FUNC OpenPBR_FresnelPair openpbr_base_film_estimate(OPENPBR_IN(OpenPBR_F
     for (int quartile = 0; quartile < 3; ++quartile)
     {
         quartiles[quartile] =
-            at_view ? view.z
-                    : openpbr_film_lobe_node(table, (quartile + 1) * ((OPENPBR_LUT_FILM_QUANTILE_SIZE - 1) / 4), 0);
+            at_view ? view.z : openpbr_film_lobe_node(table, (quartile + 1) * ((OPENPBR_LUT_FILM_QUANTILE_SIZE - 1) / 4), 0);
     }
-    const bool narrow = !at_view && lowest <= 0.0f &&
-                        quartiles[2] - quartiles[0] < OPENPBR_FILM_ESTIMATE_NARROW_WIDTH * quartiles[1];
+    const bool narrow =
+        !at_view && lowest <= 0.0f && quartiles[2] - quartiles[0] < OPENPBR_FILM_ESTIMATE_NARROW_WIDTH * quartiles[1];
     // The cosines where the segments end, in increasing order (the last one, 2, above every
     // cosine: the whole lobe), see the method above.
     float cuts[OPENPBR_FILM_ESTIMATE_MAX_SEGMENTS];

@@ -1088,53 +1088,89 @@ ConsistencyResult check_sample_consistency(const SamplingTarget& target, const C
 // ------------------------------------------------------------------------------------------
 // Albedo
 
-AlbedoEstimate estimate_albedo(const SamplingTarget& target, std::uint64_t sample_count, std::uint64_t seed,
-                               SamplerKind sampler, int replicas)
+namespace {
+
+AlbedoEstimate to_albedo_estimate(const openpbr::host::DirectionalAlbedo& albedo)
 {
-    // The host's one directional-albedo estimator (host/support/directional_albedo.h); this
-    // function only draws the samples.
-    const auto weight_of = [&](const glm::vec3& u) {
-        const DirectionSample s = target.sample(u);
-        return s.is_valid() ? glm::dvec3(s.total_weight()) : glm::dvec3(0.0);
-    };
-    openpbr::host::DirectionalAlbedo albedo;
-    if (sampler == SamplerKind::independent)
-    {
-        const ChunkPlan plan = plan_chunks(sample_count);
-        std::vector<openpbr::host::SampleWeightSums> partial(plan.chunks);
-        parallel_for_index(plan.chunks, [&](std::uint64_t chunk) {
-            for_each_independent_sample(seed, chunk, plan.begin(chunk), plan.end(chunk),
-                                        [&](std::uint64_t, const glm::vec3& u) {
-                                            const glm::dvec3 w = weight_of(u);
-                                            partial[chunk].add(w.x, w.y, w.z);
-                                        });
-        });
-        openpbr::host::SampleWeightSums total;
-        for (const openpbr::host::SampleWeightSums& s : partial)
-        {
-            total.merge(s);
-        }
-        albedo = openpbr::host::directional_albedo_from_sums(total);
-    }
-    else
-    {
-        // Randomized QMC: independent replicas, each a shifted R3 sequence.
-        const int r = std::max(replicas, 2);
-        const std::uint64_t per_replica = std::max<std::uint64_t>(1, sample_count / static_cast<std::uint64_t>(r));
-        std::vector<openpbr::host::SampleWeightSums> partial(static_cast<std::size_t>(r));
-        parallel_for_index(static_cast<std::uint64_t>(r), [&](std::uint64_t replica) {
-            const openpbr::host::ShiftedR3Sequence sequence(mix_seed(seed) ^ (replica * 0x9e3779b97f4a7c15ull));
-            openpbr::host::accumulate_sample_weights(partial[replica], 0, per_replica,
-                                                     [&](std::uint64_t i) { return weight_of(point_of(sequence, i)); });
-        });
-        albedo = openpbr::host::directional_albedo_from_replicas(partial);
-    }
     AlbedoEstimate estimate;
     estimate.sample_count = albedo.samples;
     estimate.mean = glm::dvec3(albedo.mean[0], albedo.mean[1], albedo.mean[2]);
     estimate.standard_error = glm::dvec3(albedo.standard_error[0], albedo.standard_error[1], albedo.standard_error[2]);
     estimate.max_weight = glm::dvec3(albedo.max_weight[0], albedo.max_weight[1], albedo.max_weight[2]);
     return estimate;
+}
+
+}  // namespace
+
+IndependentAlbedoSampler::IndependentAlbedoSampler(const SamplingTarget& target, std::uint64_t seed)
+    : target_(target), seed_(seed)
+{
+}
+
+AlbedoEstimate IndependentAlbedoSampler::estimate(std::uint64_t sample_count)
+{
+    const ChunkPlan plan = plan_chunks(sample_count);
+    // Each chunk of this count draws the numbers its first per_chunk_ samples drew before, so
+    // those are kept (see the class comment).
+    const bool continues = per_chunk_ > 0 && streams_.size() == plan.chunks && sample_count % plan.chunks == 0 &&
+                           sample_count / plan.chunks >= per_chunk_;
+    if (!continues)
+    {
+        streams_.clear();
+        for (std::uint64_t chunk = 0; chunk < plan.chunks; ++chunk)
+        {
+            streams_.emplace_back(mix_seed(seed_), chunk);
+        }
+        sums_.assign(plan.chunks, host::SampleWeightSums());
+        per_chunk_ = 0;
+    }
+    const std::uint64_t drawn = per_chunk_;
+    parallel_for_index(plan.chunks, [&](std::uint64_t chunk) {
+        // The same numbers, in the same order, as for_each_independent_sample's.
+        RandomStream& stream = streams_[chunk];
+        for (std::uint64_t i = plan.begin(chunk) + drawn; i < plan.end(chunk); ++i)
+        {
+            const float u0 = stream.next_float();
+            const float u1 = stream.next_float();
+            const float u2 = stream.next_float();
+            const DirectionSample s = target_.sample(glm::vec3(u0, u1, u2));
+            const glm::dvec3 w = s.is_valid() ? glm::dvec3(s.total_weight()) : glm::dvec3(0.0);
+            sums_[chunk].add(w.x, w.y, w.z);
+        }
+    });
+    // Only a count of equal chunks can be continued.
+    per_chunk_ = sample_count % plan.chunks == 0 ? sample_count / plan.chunks : 0;
+    host::SampleWeightSums total;
+    for (const host::SampleWeightSums& chunk_sums : sums_)
+    {
+        total.merge(chunk_sums);
+    }
+    return to_albedo_estimate(host::directional_albedo_from_sums(total));
+}
+
+AlbedoEstimate estimate_albedo(const SamplingTarget& target, std::uint64_t sample_count, std::uint64_t seed,
+                               SamplerKind sampler, int replicas)
+{
+    // The host's one directional-albedo estimator (host/support/directional_albedo.h); this
+    // function only draws the samples.
+    if (sampler == SamplerKind::independent)
+    {
+        return IndependentAlbedoSampler(target, seed).estimate(sample_count);
+    }
+    const auto weight_of = [&](const glm::vec3& u) {
+        const DirectionSample s = target.sample(u);
+        return s.is_valid() ? glm::dvec3(s.total_weight()) : glm::dvec3(0.0);
+    };
+    // Randomized QMC: independent replicas, each a shifted R3 sequence.
+    const int r = std::max(replicas, 2);
+    const std::uint64_t per_replica = std::max<std::uint64_t>(1, sample_count / static_cast<std::uint64_t>(r));
+    std::vector<openpbr::host::SampleWeightSums> partial(static_cast<std::size_t>(r));
+    parallel_for_index(static_cast<std::uint64_t>(r), [&](std::uint64_t replica) {
+        const openpbr::host::ShiftedR3Sequence sequence(mix_seed(seed) ^ (replica * 0x9e3779b97f4a7c15ull));
+        openpbr::host::accumulate_sample_weights(partial[replica], 0, per_replica,
+                                                 [&](std::uint64_t i) { return weight_of(point_of(sequence, i)); });
+    });
+    return to_albedo_estimate(openpbr::host::directional_albedo_from_replicas(partial));
 }
 
 // ------------------------------------------------------------------------------------------

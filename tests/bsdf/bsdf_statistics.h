@@ -305,6 +305,28 @@ struct AlbedoEstimate
 AlbedoEstimate estimate_albedo(const SamplingTarget& target, std::uint64_t sample_count, std::uint64_t seed,
                                SamplerKind sampler = SamplerKind::low_discrepancy, int replicas = 16);
 
+// The independent estimate at growing sample counts, e.g. a furnace that draws 4x more while
+// the standard error is too large. The samples are drawn in chunks, chunk c of a seed always
+// the same numbers, and every count from 2^21 on has 256 chunks, so a larger count draws each
+// chunk's numbers of the smaller one again first. This keeps each chunk's stream and sums where
+// the last estimate stopped and draws only the rest: each estimate is estimate_albedo's at that
+// count bit for bit (each chunk's sums added in the same order from the same state, merged in
+// chunk order); counts with another chunk count start afresh.
+class IndependentAlbedoSampler
+{
+  public:
+    IndependentAlbedoSampler(const SamplingTarget& target, std::uint64_t seed);
+    // sample_count: a multiple of the chunk count, e.g. a power of two >= 256.
+    AlbedoEstimate estimate(std::uint64_t sample_count);
+
+  private:
+    const SamplingTarget& target_;
+    std::uint64_t seed_;
+    std::uint64_t per_chunk_ = 0;  // samples drawn so far in every chunk
+    std::vector<RandomStream> streams_;
+    std::vector<host::SampleWeightSums> sums_;
+};
+
 // ------------------------------------------------------------------------------------------
 // Reciprocity of a single lobe.
 //

@@ -456,11 +456,15 @@ TEST_P(WhiteFurnace, Albedo)
     // +- 0.0016 from 2^24 independent ones and 0.9974 +- 0.0063 from the furnace command's 2^20).
     const double target_error = sweep ? 1e-3 : kFurnaceTargetError;
     const SamplingTarget target = make_bsdf_target(bsdf, c.name());
+    // The sweep's escalation keeps the samples it drew (IndependentAlbedoSampler: the same
+    // estimate at each count, bit for bit, without drawing the first quarter again from 2^22
+    // to 2^24).
+    IndependentAlbedoSampler independent(target, seed_from_name(c.name()));
     AlbedoEstimate albedo;
     for (std::uint64_t samples = sweep ? (1u << 14) : (1u << 18); samples <= (sweep ? (1u << 24) : (1u << 22)); samples *= 4)
     {
-        albedo = estimate_albedo(target, samples, seed_from_name(c.name()),
-                                 sweep ? SamplerKind::independent : SamplerKind::low_discrepancy);
+        albedo = sweep ? independent.estimate(samples)
+                       : estimate_albedo(target, samples, seed_from_name(c.name()), SamplerKind::low_discrepancy);
         const glm::dvec3 se = albedo.standard_error;
         if (std::max({se.x, se.y, se.z}) <= target_error)
         {
@@ -680,6 +684,37 @@ SamplingTarget cosine_target(bool wrong_pdf)
         return d.z > 0.0f ? (wrong_pdf ? 1.0 / (2.0 * 3.14159265358979) : d.z / 3.14159265358979) : 0.0;
     };
     return target;
+}
+
+// The furnace's escalation (IndependentAlbedoSampler) continues each chunk where the smaller
+// count stopped: every estimate must be estimate_albedo's at that count, bit for bit, through
+// a change of chunk count (2^20: 128 chunks, 2^21 and up: 256) and a continuation (2^21 ->
+// 2^23). Weights vary per sample (the cosine sampler weighted by its own random numbers), so a
+// sample drawn twice or skipped changes the sums.
+TEST(StatisticsMachinery, EscalatingSamplerKeepsEstimateAlbedosSamples)
+{
+    SamplingTarget target = cosine_target(false);
+    target.sample = [](const glm::vec3& u) {
+        DirectionSample s;
+        s.direction = openpbr_sample_cosine_hemisphere(glm::vec2(u.x, u.y));
+        s.pdf = openpbr_cosine_hemisphere_pdf(s.direction.z);
+        s.lobe_type = OPENPBR_LOBE_TYPE_REFLECTION | OPENPBR_LOBE_TYPE_DIFFUSE;
+        s.weight.diffuse = glm::vec3(u.z, 1.0f - u.z, u.x * u.y);
+        return s;
+    };
+    IndependentAlbedoSampler escalating(target, 7);
+    for (const std::uint64_t samples : {std::uint64_t(1) << 20, std::uint64_t(1) << 21, std::uint64_t(1) << 23})
+    {
+        const AlbedoEstimate kept = escalating.estimate(samples);
+        const AlbedoEstimate fresh = estimate_albedo(target, samples, 7, SamplerKind::independent);
+        EXPECT_EQ(kept.sample_count, samples);
+        for (int channel = 0; channel < 3; ++channel)
+        {
+            EXPECT_EQ(kept.mean[channel], fresh.mean[channel]) << samples << " samples, channel " << channel;
+            EXPECT_EQ(kept.standard_error[channel], fresh.standard_error[channel]) << samples << " samples";
+            EXPECT_EQ(kept.max_weight[channel], fresh.max_weight[channel]) << samples << " samples";
+        }
+    }
 }
 
 TEST(StatisticsMachinery, ChiSquareAcceptsCorrectAndRejectsWrongPdf)
