@@ -198,12 +198,12 @@ std::vector<CompiledFile> compile_targets(const CompileTargetsOptions& options)
     std::vector<CompiledFile> files;
 
     // Slang's outputs, one entry point at a time for each group of targets that take the same
-    // defines (slang_command): with slangc.mjs one process writes the whole group
-    // (-target a,b -o DIR writes DIR/<module>.<ext>, renamed here), since the WebAssembly compiler
-    // is loaded and started once per process: the conformance kernel for spirv, metal, glsl and
-    // wgsl in one process took 6.8 s of CPU against 4.5 s for spirv alone (2026-11-27), and the
-    // files are byte for byte those of one process per target. A native slangc (options.slangc)
-    // runs once per target.
+    // defines (slang_command): with slangc.mjs one process writes the whole group (-target a,b
+    // -o DIR -name NAME writes DIR/NAME.<ext>, moved here into each target's folder), since the
+    // WebAssembly compiler is loaded and started once per process: the conformance kernel for
+    // spirv, metal, glsl and wgsl in one process took 6.8 s of CPU against 4.5 s for spirv alone
+    // (2026-11-27), and the files are byte for byte those of one process per target. A native
+    // slangc (options.slangc) runs once per target.
     struct SlangEntry
     {
         const char* description;
@@ -264,9 +264,16 @@ std::vector<CompiledFile> compile_targets(const CompileTargetsOptions& options)
                 fs::path(options.output_directory) / (std::string(".slang-") + entry.output_name + "-" + members.front());
             const fs::path single_output = fs::path(options.output_directory) / members.front() /
                                            (std::string(entry.output_name) + "." + extension_of(members.front()));
-            command.insert(command.end(),
-                           {"-entry", entry.entry, "-stage", "compute", "-I", slang_dir.string(), "-o",
-                            (members.size() == 1 ? single_output : shared_output).string(), entry.source_file.string()});
+            command.insert(command.end(), {"-entry", entry.entry, "-stage", "compute", "-I", slang_dir.string()});
+            if (members.size() > 1)
+            {
+                command.insert(command.end(), {"-o", shared_output.string(), "-name", entry.output_name});
+            }
+            else
+            {
+                command.insert(command.end(), {"-o", single_output.string()});
+            }
+            command.push_back(entry.source_file.string());
             const double seconds = run_command(command);
             for (const std::string& target : members)
             {
@@ -275,7 +282,7 @@ std::vector<CompiledFile> compile_targets(const CompileTargetsOptions& options)
                     fs::path(options.output_directory) / target / (std::string(entry.output_name) + "." + extension);
                 if (members.size() > 1)
                 {
-                    fs::rename(shared_output / (entry.source_file.stem().string() + "." + extension), output);
+                    fs::rename(shared_output / output.filename(), output);
                 }
                 files.push_back(record(target, entry.description, output, seconds));
             }

@@ -63,10 +63,8 @@ template <class Function> void parallel_for_index(std::uint64_t count, const Fun
 // Calls visit(index, u) for the indices of one chunk with independent uniform triples; chunk
 // c of seed s always yields the same numbers.
 template <class Visit>
-void for_each_independent_sample(std::uint64_t seed, std::uint64_t chunk, std::uint64_t begin, std::uint64_t end,
-                                 const Visit& visit)
+void draw_independent_samples(RandomStream& rng, std::uint64_t begin, std::uint64_t end, const Visit& visit)
 {
-    RandomStream rng(mix_seed(seed), chunk);
     for (std::uint64_t i = begin; i < end; ++i)
     {
         const float u0 = rng.next_float();
@@ -74,6 +72,14 @@ void for_each_independent_sample(std::uint64_t seed, std::uint64_t chunk, std::u
         const float u2 = rng.next_float();
         visit(i, glm::vec3(u0, u1, u2));
     }
+}
+
+template <class Visit>
+void for_each_independent_sample(std::uint64_t seed, std::uint64_t chunk, std::uint64_t begin, std::uint64_t end,
+                                 const Visit& visit)
+{
+    RandomStream rng(mix_seed(seed), chunk);
+    draw_independent_samples(rng, begin, end, visit);
 }
 
 std::string lobe_type_string(std::uint32_t lobe_type)
@@ -1126,17 +1132,13 @@ AlbedoEstimate IndependentAlbedoSampler::estimate(std::uint64_t sample_count)
     }
     const std::uint64_t drawn = per_chunk_;
     parallel_for_index(plan.chunks, [&](std::uint64_t chunk) {
-        // The same numbers, in the same order, as for_each_independent_sample's.
-        RandomStream& stream = streams_[chunk];
-        for (std::uint64_t i = plan.begin(chunk) + drawn; i < plan.end(chunk); ++i)
-        {
-            const float u0 = stream.next_float();
-            const float u1 = stream.next_float();
-            const float u2 = stream.next_float();
-            const DirectionSample s = target_.sample(glm::vec3(u0, u1, u2));
-            const glm::dvec3 w = s.is_valid() ? glm::dvec3(s.total_weight()) : glm::dvec3(0.0);
-            sums_[chunk].add(w.x, w.y, w.z);
-        }
+        // The chunk's stream continued where it stopped (for_each_independent_sample's numbers).
+        draw_independent_samples(streams_[chunk], plan.begin(chunk) + drawn, plan.end(chunk),
+                                 [&](std::uint64_t, const glm::vec3& u) {
+                                     const DirectionSample s = target_.sample(u);
+                                     const glm::dvec3 w = s.is_valid() ? glm::dvec3(s.total_weight()) : glm::dvec3(0.0);
+                                     sums_[chunk].add(w.x, w.y, w.z);
+                                 });
     });
     // Only a count of equal chunks can be continued.
     per_chunk_ = sample_count % plan.chunks == 0 ? sample_count / plan.chunks : 0;
