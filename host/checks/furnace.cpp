@@ -428,13 +428,12 @@ const std::vector<FurnaceKnownLimit>& furnace_known_limits()
     // gave 3/4 of its cells to views below mu_c at and above eta = 1, OPENPBR_LUT_VIEW_SPLIT_ABOVE:
     // 1.0029 / 1.0038 / 1.0039 / 1.0046 / 1.0035 now, within the sweep's band.)
     static const std::vector<FurnaceKnownLimit> limits = {
-        // Under a coat of weight 0.5 (outside IOR 1.3 over the film: no critical cosine, the lobe
-        // split in two at its mean) at grazing views: 1.0077 / 1.0024 / 0.9917 +- 0.0004 at cos
-        // 0.1, 1.0071 / 0.9991 / 0.9929 at 0.02, 1.0069 / 0.9983 / 0.9942 at 0.001 (262144
-        // samples; before 1.0096 at cos 0.1).
-        {"white_diffuse_thin_film_under_half_coat", 0.1f, 0.985, 1.013},
-        {"white_diffuse_thin_film_under_half_coat", 0.02f, 0.970, 1.011},
-        {"white_diffuse_thin_film_under_half_coat", 0.001f, 0.970, 1.011},
+        // Under a coat of weight 0.5 (outside IOR 1.3 over the film: no critical cosine) at cos
+        // 0.1: 1.0044 / 0.9999 / 0.9937 +- 0.0004 (262144 samples, the lobe in quarters since
+        // session 20; 1.0077 / 1.0024 / 0.9917 with two halves, 1.0096 before). At cos 0.02 and
+        // 0.001 it is within the furnace's bounds now (1.0015 / 0.9964, 1.0008 / 0.9979; 1.0071 and
+        // 1.0069 with two halves).
+        {"white_diffuse_thin_film_under_half_coat", 0.1f, 0.990, 1.008},
         // The same for a coat of roughness 0.1 (IOR 1.6) over white glass: E_R of the coat 0.006
         // low at cos 0.02 (it was within 0.001 with E_R tabulated directly, which read the
         // roughness-0.05 rows above 0.014 low); 1.0075 +- 0.0005 (262144 samples), 1.0066 +-
@@ -462,18 +461,18 @@ const std::vector<FurnaceKnownLimit>& furnace_known_limits()
         {"sweep_critical_eta0p99_r0p05_mu_c_plus0p005", any_view_cosine, 0.980, 1.005},  // 0.9858 +- 0.0006
         {"sweep_critical_eta0p99_r0p05_mu_c_plus0p02", any_view_cosine, 0.981, 1.005},   // 0.9852 +- 0.0003
         // The filmed grid (film_furnace_configs), its rows of the tests' subset outside the grid's
-        // band (README "Known limits"; 53 of the 6804 rows at 65536 samples): a film of IOR 1.2
-        // under a half coat of IOR 1.3 (outside IOR 1.15: no critical cosine, the lobe split in two
-        // at its mean) at a grazing view, whose colour fringes the two segments misplace
-        // (0.9596 / 0.9901 / 1.0165 +- 0.0007 at 262144 samples), and a near-mirror lobe just past
-        // the film's critical cosine under a coat of IOR 1.6 in water (1.0034 / 1.0059 / 1.0066 +-
-        // 0.0006; 1.0033 / 1.0031 / 1.0095 +- 0.0012 before the lobe's quartiles cut the segments
-        // past the critical cosine, docs/thin-film-estimate.md). The defaults under a mirror coat
-        // of weight 1 (white_diffuse_thin_film_under_coat, its lobe straddling the film's critical
-        // cosine at cos 0.5) left this list with the quartile cuts: 1.0036 / 1.0021 / 1.0015 +-
-        // 0.0009 at cos 0.5 (1.0079 before; 0.9547 before issue 31), 0.9960 +- 0.0003 at cos 0.1.
-        {"film_diffuse_coat0p5_ior1p3_air_n1p2_d1p2_r0p4", 0.1f, 0.954, 1.022},
-        {"film_glass_coat1_ior1p6_water_n1p4_d0p6_r0p1", 0.5f, 0.99, 1.011},
+        // band (README "Known limits"; 12 of the 6804 rows at 2^20 samples, all gains below 1.3 %,
+        // docs/thin-film-estimate.md): a near-mirror lobe just past the film's critical cosine
+        // (film 1.4 of 1.5 um under a half coat of IOR 1.8 in water: outside IOR 1.565, critical
+        // cosine 0.447) at cos 0.5, 1.0125 / 0.9994 / 0.9999 +- 0.0004 at 2^20 samples, the
+        // grid's largest. The two rows held here before the estimate's cuts of session 20 are
+        // within the grid's band now and stay in the tests' subset: film 1.2 under a half coat of
+        // IOR 1.3 at cos 0.1 (0.9596 / 0.9901 / 1.0165 before, 0.9992 / 0.9971 / 1.0026 now) and
+        // film 1.4 under a coat of IOR 1.6 in water at cos 0.5 (1.0034 / 1.0059 / 1.0066 before,
+        // 1.0016 / 1.0029 / 1.0037 now). The defaults under a mirror coat of weight 1
+        // (white_diffuse_thin_film_under_coat) are within the band at every view: 1.0036 /
+        // 1.0021 / 1.0015 +- 0.0009 at cos 0.5 with session 18's cuts (0.9547 before issue 31).
+        {"film_diffuse_coat0p5_ior1p8_water_n1p4_d1p5_r0p1", 0.5f, 0.99, 1.017},
     };
     return limits;
 }

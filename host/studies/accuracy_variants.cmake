@@ -134,12 +134,15 @@ openpbr_accuracy_variant(vndf_bounded KNOB "vndf sampling" SETTING "bounded (Eto
 openpbr_accuracy_variant(thin_film_fast KNOB "thin film" SETTING "fast thin film approximation"
   DEFINES OPENPBR_THIN_FILM_MODEL=OPENPBR_THIN_FILM_MODEL_FAST)
 # The thin film's albedo estimate (openpbr_base_film_estimate): the film at the view only (what
-# most implementations do), and two segments past a critical cosine instead of eight. CPU only:
-# the estimate runs in prepare, and its furnace row is a CPU measurement.
+# most implementations do), and session 19's cuts (two halves for every lobe without a critical
+# cosine that is not narrow; past one the quartiles, 12 thresholds in w and 4 evanescent
+# segments, no sliver merged; docs/thin-film-estimate.md). CPU only: the estimate runs in
+# prepare, and its furnace row is a CPU measurement.
 openpbr_accuracy_variant(film_estimate_at_view KNOB "film estimate" SETTING "film at the view only" CPU_ONLY
   DEFINES OPENPBR_FILM_ESTIMATE_METHOD=OPENPBR_FILM_ESTIMATE_AT_VIEW)
-openpbr_accuracy_variant(film_estimate_two_segments KNOB "film estimate" SETTING "2 segments past a critical cosine"
-  CPU_ONLY DEFINES OPENPBR_FILM_ESTIMATE_CRITICAL_SEGMENTS=2)
+openpbr_accuracy_variant(film_estimate_session19 KNOB "film estimate" SETTING "session 19's cuts (quartiles past a critical cosine)"
+  CPU_ONLY DEFINES OPENPBR_FILM_ESTIMATE_CRITICAL_SEGMENTS=12 OPENPBR_FILM_ESTIMATE_EVANESCENT_SEGMENTS=4
+  OPENPBR_FILM_ESTIMATE_SHARE_SEGMENTS=4 OPENPBR_FILM_ESTIMATE_WIDE_WIDTH=3.0f OPENPBR_FILM_ESTIMATE_MIN_SHARE=0.0f)
 # The precision knob: the shipped build once more under its own name, and the double build.
 openpbr_accuracy_variant(single_precision KNOB "precision" SETTING "C++ float (shipped)" FACTORY shipped CPU_ONLY)
 openpbr_accuracy_variant(double_precision KNOB "precision" SETTING "C++ double" FACTORY double CPU_ONLY DOUBLE_REFERENCE)

@@ -275,10 +275,12 @@ OPENPBR_FUNC float openpbr_ggx_lobe_dielectric_reflection_albedo(float mu, float
 //    Fresnel factor rises from total reflection like sqrt(c^2 - c_b^2), the film's tunnelling like
 //    sqrt(c_f^2 - c^2)): the largest error of the dielectric's change over the furnace's stacks
 //    (docs/thin-film-estimate.md) fell from 0.034 with two halves to 0.020 with four of these;
+//    eight (the default) left 65 -> 12 of 1,800 stacks past a critical cosine (the first of the
+//    three grids) overestimating it by more than 0.01;
 //  * the propagating film past the higher critical cosine c*: cut where w = sqrt(c^2 - c*^2)
 //    crosses OPENPBR_FILM_ESTIMATE_CRITICAL_SEGMENTS - 1 thresholds spaced geometrically from
-//    OPENPBR_FILM_ESTIMATE_FIRST_CUT to OPENPBR_FILM_ESTIMATE_LAST_CUT, and at the lobe's
-//    quartiles.
+//    OPENPBR_FILM_ESTIMATE_FIRST_CUT to OPENPBR_FILM_ESTIMATE_LAST_CUT, and at the bounds of
+//    the lobe's OPENPBR_FILM_ESTIMATE_SHARE_SEGMENTS equal shares (its sixteenths).
 //    Past c* the stack's quantities are smooth functions of w (n_o w is the film's or the base's
 //    n cos in it), not of c, and the reflectance falls from total reflection on the scale of w
 //    itself (coat 1.33 over film 1.2: the change falls from 0.87 at c* to 0.21 at c* + 0.04):
@@ -287,17 +289,28 @@ OPENPBR_FUNC float openpbr_ggx_lobe_dielectric_reflection_albedo(float mu, float
 //    Each segment is evaluated at one point while the change decays convexly past c*, so a wide
 //    segment underestimates it (Jensen) and the layers below gain: over the furnace's stacks
 //    (2,250 dense-reference cases, docs/thin-film-estimate.md) 85 cases underestimated the
-//    change by more than 0.01 with 8 segments, 54 with 12 (the default), 42 with 16.
-//    The quartiles keep four segments in a near-mirror lobe that lies between two thresholds
+//    change by more than 0.01 with 8 segments, 54 with 12, 42 with 16 (the default).
+//    The share bounds keep segments in a near-mirror lobe that lies between two thresholds
 //    (film 1.4 under a coat of 1.6, roughness 0.1, view cos 0.5, just past c* = 0.484: the
-//    error of the change 0.021 with the median alone, 0.010 with the quartiles; over the
-//    furnace's stacks 54 -> 40 cases underestimating it by more than 0.01);
+//    error of the change 0.021 with the median alone, 0.010 with the quartiles), and they split
+//    the lobe's light beyond the last threshold, where a thick film's fringes pass through it
+//    (film 1.4 of 1.5 um under a coat of 1.6, roughness 0.13, view cos 0.5: -0.0099 with
+//    quarters and 12 thresholds, -0.0047 with sixteenths and 16). Over the three dense-reference grids (10,980 stacks)
+//    the cases past a critical cosine underestimating the change by more than 0.005 went 299 ->
+//    70 with sixteenths, 16 thresholds, 8 evanescent segments and the slivers below merged, and
+//    the filmed furnace's worst cos 0.5 row under a coat of IOR 1.6 went from 1.008 into the band. A sliver of
+//    light under OPENPBR_FILM_ESTIMATE_MIN_SHARE between two cuts joins the next segment (a
+//    GGX lobe's long tails made every cut a film evaluation);
 //  * without any critical cosine (in air, under a coat less dense than film and base): two
 //    halves cut at the lobe's mean cosine (OPENPBR_FILM_ESTIMATE_PLAIN_SEGMENTS = 2), or more
 //    segments of equal share. A film nearly index-matched to the medium above it (film 1.2 under
 //    a half coat of IOR 1.3 in air: n_o 1.15) has the sqrt-like bend of a critical cosine just
 //    below 0 (n_f cos_f = sqrt(n_f^2 - n_o^2 + n_o^2 c^2)): two halves erred by 0.042 there at
-//    view cosine 0.1 (the furnace's worst losses, 0.960), four segments by 0.011. A narrow lobe
+//    view cosine 0.1 (the furnace's worst losses, 0.960), four segments by 0.011. So a wide
+//    lobe, whose interquartile range of c is at least OPENPBR_FILM_ESTIMATE_WIDE_WIDTH times its
+//    median (rough lobes and grazing views, whose light reaches the grazing microfacets where
+//    the film's amplitudes bend), is OPENPBR_FILM_ESTIMATE_WIDE_SEGMENTS quarters; the rest keep
+//    the two halves, which is what every-lobe prepare's budget allows. A narrow lobe
 //    there, whose interquartile range of c is below OPENPBR_FILM_ESTIMATE_NARROW_WIDTH times its
 //    median, is one segment evaluated at its median (one film evaluation instead of two, as the
 //    mirror limit's one at the view): the film's amplitudes and the plain Fresnel factor change
@@ -310,40 +323,39 @@ OPENPBR_FUNC float openpbr_ggx_lobe_dielectric_reflection_albedo(float mu, float
 // damps harmonic m like the spread of a spectral lobe does, so each segment passes the spread of
 // its optical path 2 n_f d cos_f to the film (OpenPBR_ThinFilmInputs.optical_path_spread_um), from
 // its quartiles (openpbr_film_segment_point). Up to OPENPBR_FILM_ESTIMATE_MAX_SEGMENTS film
-// evaluations past a critical cosine (fewer for narrow lobes: empty segments are skipped), both
-// bases in each (they share the film's harmonics); two in air or under a coat less dense than
-// film and base. The segments depend on the view's cosine and the lobe's roughness only, so the
-// estimate of an isotropic lobe does not depend on the view's azimuth; an anisotropic lobe reads
-// the table at its root-mean-square alpha. Measured against a 96 x 96-node lobe average
-// (tests/bsdf/test_film_estimate.cpp) and a 128 x 128-node one (docs/thin-film-estimate.md).
-// The estimate's method, e.g. -DOPENPBR_FILM_ESTIMATE_METHOD=OPENPBR_FILM_ESTIMATE_AT_VIEW:
-// SEGMENTS (default) the lobe's segments below; AT_VIEW the film at the view's cosine only, as
-// for a mirror (what most implementations do; the accuracy study's comparison row).
+// evaluations past a critical cosine (fewer where the cuts hold slivers of light: they join the
+// next segment), both bases in each (they share the film's harmonics); one, two or four in air
+// or under a coat less dense than film and base. The segments depend on the view's cosine and the lobe's roughness only, so
+// the estimate of an isotropic lobe does not depend on the view's azimuth; an anisotropic lobe reads the table at its
+// root-mean-square alpha. Measured against a 96 x 96-node lobe average (tests/bsdf/test_film_estimate.cpp) and a 128 x
+// 128-node one (docs/thin-film-estimate.md). The estimate's method, e.g.
+// -DOPENPBR_FILM_ESTIMATE_METHOD=OPENPBR_FILM_ESTIMATE_AT_VIEW: SEGMENTS (default) the lobe's segments below; AT_VIEW the
+// film at the view's cosine only, as for a mirror (what most implementations do; the accuracy study's comparison row).
 #define OPENPBR_FILM_ESTIMATE_SEGMENTS 0
 #define OPENPBR_FILM_ESTIMATE_AT_VIEW 1
 #ifndef OPENPBR_FILM_ESTIMATE_METHOD
 #define OPENPBR_FILM_ESTIMATE_METHOD OPENPBR_FILM_ESTIMATE_SEGMENTS
 #endif
-// Segments of the propagating film past a critical cosine, e.g. 12 (the default) or 2 for a
+// Segments of the propagating film past a critical cosine, e.g. 16 (the default) or 2 for a
 // cheaper estimate; and the first and last cut in w = sqrt(c^2 - c*^2) (0.015 and 0.53: from
 // where total reflection ends at a film's edge to where the lobe is smooth again).
 #ifndef OPENPBR_FILM_ESTIMATE_CRITICAL_SEGMENTS
-#define OPENPBR_FILM_ESTIMATE_CRITICAL_SEGMENTS 12
+#define OPENPBR_FILM_ESTIMATE_CRITICAL_SEGMENTS 16
 #endif
 #if OPENPBR_FILM_ESTIMATE_CRITICAL_SEGMENTS < 2
 #error "OPENPBR_FILM_ESTIMATE_CRITICAL_SEGMENTS must be at least 2"
 #endif
 #define OPENPBR_FILM_ESTIMATE_FIRST_CUT 0.015f
 #define OPENPBR_FILM_ESTIMATE_LAST_CUT 0.53f
-// Segments of the evanescent film between the critical cosines, e.g. 4 (the default) or 2.
+// Segments of the evanescent film between the critical cosines, e.g. 8 (the default) or 2.
 #ifndef OPENPBR_FILM_ESTIMATE_EVANESCENT_SEGMENTS
-#define OPENPBR_FILM_ESTIMATE_EVANESCENT_SEGMENTS 4
+#define OPENPBR_FILM_ESTIMATE_EVANESCENT_SEGMENTS 8
 #endif
 // Segments of a lobe without a critical cosine (in air or under a coat less dense than the film
-// and the base), e.g. 2 (the default: two film evaluations, cut at the lobe's mean) or 4 (equal
-// shares: the largest error over the furnace's stacks 0.042 -> 0.011, see the method above, at
-// two more film evaluations: every-lobe prepare about 20,000 -> 32,000 instructions, over the
-// issue's 20,466 budget).
+// and the base) that is neither narrow nor wide, e.g. 2 (the default: two film evaluations, cut
+// at the lobe's mean) or 4 (equal shares: the largest error over the furnace's stacks 0.042 ->
+// 0.011, see the method above, at two more film evaluations: every-lobe prepare about 20,000 ->
+// 32,000 instructions, over issue 31's 20,466 budget).
 #ifndef OPENPBR_FILM_ESTIMATE_PLAIN_SEGMENTS
 #define OPENPBR_FILM_ESTIMATE_PLAIN_SEGMENTS 2
 #endif
@@ -357,6 +369,40 @@ OPENPBR_FUNC float openpbr_ggx_lobe_dielectric_reflection_albedo(float mu, float
 #ifndef OPENPBR_FILM_ESTIMATE_NARROW_WIDTH
 #define OPENPBR_FILM_ESTIMATE_NARROW_WIDTH 0.05f
 #endif
+// The least share of the lobe's light evaluated on its own between two cuts past a critical
+// cosine, e.g. 0.01 (the default: under a coat of IOR 1.6 over a film of 1.4, roughness 0.4,
+// view cos 0.5, prepare 166,000 -> 110,000 instructions; dense-reference cases past a critical
+// cosine low by more than 0.005: 58 -> 70 of 10,980) or 0 (every non-empty segment). Segments
+// of share s in [m, 2 m) keep 2 (s - m) of it and those below m none (the rest joins the next
+// segment), so the estimate has no jump where s crosses m.
+#ifndef OPENPBR_FILM_ESTIMATE_MIN_SHARE
+#define OPENPBR_FILM_ESTIMATE_MIN_SHARE 0.01f
+#endif
+// Equal shares of the lobe's light past the higher critical cosine: their bounds are further
+// cuts there beside the thresholds in w, at table 5's nodes, e.g. 16 (the default), 8 (about
+// 20 % fewer film evaluations; dense-reference cases low by more than 0.005: 70 -> 115 of
+// 10,980) or 4 (the quartiles: 299 with 12 thresholds and 4 evanescent segments).
+#ifndef OPENPBR_FILM_ESTIMATE_SHARE_SEGMENTS
+#define OPENPBR_FILM_ESTIMATE_SHARE_SEGMENTS 16
+#endif
+// A wide lobe without a critical cosine, whose interquartile range of c is at least
+// OPENPBR_FILM_ESTIMATE_WIDE_WIDTH times its median, is cut into OPENPBR_FILM_ESTIMATE_WIDE_SEGMENTS
+// equal shares at table 5's nodes instead of two halves, e.g. 4 and 0.4 (the defaults: every-lobe
+// prepare 18,961 -> 20,295 instructions (20,350 with the partial sliver merge), under issue 31's 20,466; dense-reference
+// cases without a critical cosine low by more than 0.005: 343 -> 249 of 5,490), 0.3 (20,929 instructions, 185 cases), 0.1
+// (every lobe not narrow; 126 cases) or a width above 2 (never).
+#ifndef OPENPBR_FILM_ESTIMATE_WIDE_SEGMENTS
+#define OPENPBR_FILM_ESTIMATE_WIDE_SEGMENTS 4
+#endif
+#ifndef OPENPBR_FILM_ESTIMATE_WIDE_WIDTH
+#define OPENPBR_FILM_ESTIMATE_WIDE_WIDTH 0.4f
+#endif
+#if (OPENPBR_LUT_FILM_QUANTILE_SIZE - 1) % OPENPBR_FILM_ESTIMATE_WIDE_SEGMENTS != 0
+#error "OPENPBR_FILM_ESTIMATE_WIDE_SEGMENTS must divide table 5's probability intervals (32: 2, 4, 8, 16 or 32)"
+#endif
+#if (OPENPBR_LUT_FILM_QUANTILE_SIZE - 1) % OPENPBR_FILM_ESTIMATE_SHARE_SEGMENTS != 0
+#error "OPENPBR_FILM_ESTIMATE_SHARE_SEGMENTS must divide table 5's probability intervals (32: 2, 4, 8, 16 or 32)"
+#endif
 #if (OPENPBR_LUT_FILM_QUANTILE_SIZE - 1) % 4 != 0
 #error "table 5's probability nodes must include the quartiles (OPENPBR_LUT_FILM_QUANTILE_SIZE = 4 k + 1)"
 #endif
@@ -364,16 +410,33 @@ OPENPBR_FUNC float openpbr_ggx_lobe_dielectric_reflection_albedo(float mu, float
 #error "OPENPBR_FILM_ESTIMATE_EVANESCENT_SEGMENTS and OPENPBR_FILM_ESTIMATE_PLAIN_SEGMENTS must be at least 1"
 #endif
 // Metal below the base's critical cosine (1), the evanescent film, the propagating film (its
-// segments and three quartiles), or the plain lobe's segments.
-#define OPENPBR_FILM_ESTIMATE_CRITICAL_CUTS \
-    (4 + OPENPBR_FILM_ESTIMATE_EVANESCENT_SEGMENTS + OPENPBR_FILM_ESTIMATE_CRITICAL_SEGMENTS)
+// segments and the share bounds), or the plain lobe's segments.
+#define OPENPBR_FILM_ESTIMATE_CRITICAL_CUTS                                                \
+    (OPENPBR_FILM_ESTIMATE_EVANESCENT_SEGMENTS + OPENPBR_FILM_ESTIMATE_CRITICAL_SEGMENTS + \
+     OPENPBR_FILM_ESTIMATE_SHARE_SEGMENTS)
 #define OPENPBR_FILM_ESTIMATE_MAX_SEGMENTS                                                                            \
-    (OPENPBR_FILM_ESTIMATE_CRITICAL_CUTS > OPENPBR_FILM_ESTIMATE_PLAIN_SEGMENTS ? OPENPBR_FILM_ESTIMATE_CRITICAL_CUTS \
-                                                                                : OPENPBR_FILM_ESTIMATE_PLAIN_SEGMENTS)
+    (OPENPBR_FILM_ESTIMATE_CRITICAL_CUTS > OPENPBR_FILM_ESTIMATE_PLAIN_SEGMENTS + OPENPBR_FILM_ESTIMATE_WIDE_SEGMENTS \
+         ? OPENPBR_FILM_ESTIMATE_CRITICAL_CUTS                                                                        \
+         : OPENPBR_FILM_ESTIMATE_PLAIN_SEGMENTS + OPENPBR_FILM_ESTIMATE_WIDE_SEGMENTS)
+// The probability step of table 5's nodes between equal shares (8 of 32 for quarters).
+#define OPENPBR_FILM_ESTIMATE_SHARE_STEP ((OPENPBR_LUT_FILM_QUANTILE_SIZE - 1) / OPENPBR_FILM_ESTIMATE_SHARE_SEGMENTS)
 
 OPENPBR_FUNC float openpbr_critical_cosine(float n, float n_o)
 {
     return n >= n_o ? 0.0f : openpbr_safe_sqrt(1.0f - openpbr_square(n / n_o));
+}
+
+// The cosine past c* = lowest where w = sqrt(c^2 - c*^2) crosses the index-th of the
+// OPENPBR_FILM_ESTIMATE_CRITICAL_SEGMENTS - 1 thresholds, geometric from
+// OPENPBR_FILM_ESTIMATE_FIRST_CUT to OPENPBR_FILM_ESTIMATE_LAST_CUT.
+OPENPBR_FUNC float openpbr_film_estimate_threshold(float lowest, int index)
+{
+    const float step = OPENPBR_FILM_ESTIMATE_CRITICAL_SEGMENTS > 2
+                           ? float(index) / float(OPENPBR_FILM_ESTIMATE_CRITICAL_SEGMENTS - 2)
+                           : 0.5f;
+    const float w =
+        OPENPBR_FILM_ESTIMATE_FIRST_CUT * pow(OPENPBR_FILM_ESTIMATE_LAST_CUT / OPENPBR_FILM_ESTIMATE_FIRST_CUT, step);
+    return sqrt(lowest * lowest + w * w);
 }
 
 // Optical path 2 d n_f cos_f of a film at outside cosine c; film_offset = (n_f - n_o)(n_f + n_o),
@@ -450,6 +513,8 @@ OPENPBR_FUNC OpenPBR_FresnelPair openpbr_base_film_estimate(OPENPBR_IN(OpenPBR_F
     }
     const bool narrow =
         !at_view && lowest <= 0.0f && quartiles[2] - quartiles[0] < OPENPBR_FILM_ESTIMATE_NARROW_WIDTH * quartiles[1];
+    const bool wide =
+        !at_view && lowest <= 0.0f && quartiles[2] - quartiles[0] >= OPENPBR_FILM_ESTIMATE_WIDE_WIDTH * quartiles[1];
     // The cosines where the segments end, in increasing order (the last one, 2, above every
     // cosine: the whole lobe), see the method above.
     float cuts[OPENPBR_FILM_ESTIMATE_MAX_SEGMENTS];
@@ -462,11 +527,14 @@ OPENPBR_FUNC OpenPBR_FresnelPair openpbr_base_film_estimate(OPENPBR_IN(OpenPBR_F
     else if (lowest <= 0.0f)
     {
         // No critical cosine: two halves at the lobe's mean cosine (one node read), or more
-        // segments of equal share.
-        for (int segment = 1; segment < OPENPBR_FILM_ESTIMATE_PLAIN_SEGMENTS; ++segment)
+        // segments of equal share; a wide lobe's equal shares cut at table 5's nodes.
+        const int segments = wide ? OPENPBR_FILM_ESTIMATE_WIDE_SEGMENTS : OPENPBR_FILM_ESTIMATE_PLAIN_SEGMENTS;
+        for (int segment = 1; segment < segments; ++segment)
         {
             cuts[cut_count] =
-                OPENPBR_FILM_ESTIMATE_PLAIN_SEGMENTS == 2
+                wide ? openpbr_film_lobe_node(
+                           table, segment * ((OPENPBR_LUT_FILM_QUANTILE_SIZE - 1) / OPENPBR_FILM_ESTIMATE_WIDE_SEGMENTS), 0)
+                : OPENPBR_FILM_ESTIMATE_PLAIN_SEGMENTS == 2
                     ? openpbr_film_lobe_total(table).y
                     : openpbr_film_lobe_quantile(table, float(segment) / float(OPENPBR_FILM_ESTIMATE_PLAIN_SEGMENTS));
             ++cut_count;
@@ -494,39 +562,36 @@ OPENPBR_FUNC OpenPBR_FresnelPair openpbr_base_film_estimate(OPENPBR_IN(OpenPBR_F
             cuts[cut_count] = film_critical;
             ++cut_count;
         }
-        // Past c*: the thresholds in w and the lobe's quartiles that lie past c*, merged in
-        // increasing order.
-        int next_quartile = 0;
-        for (int cut = 0; cut < OPENPBR_FILM_ESTIMATE_CRITICAL_SEGMENTS; ++cut)
+        // Past c*: the thresholds in w and the bounds of the lobe's equal shares that lie past c*,
+        // merged in increasing order in one loop (one step per cut: a nested loop would be
+        // unrolled by drivers into thresholds x bounds copies of its body).
+        int next_threshold = 0;
+        float threshold = openpbr_film_estimate_threshold(lowest, 0);
+        int next_share = 1;
+        float share_bound = openpbr_film_lobe_node(table, OPENPBR_FILM_ESTIMATE_SHARE_STEP, 0);
+        for (int step = 0; step < OPENPBR_FILM_ESTIMATE_CRITICAL_SEGMENTS + OPENPBR_FILM_ESTIMATE_SHARE_SEGMENTS - 2; ++step)
         {
-            // The last pass only places the quartiles above the last threshold.
-            const bool last = cut + 1 == OPENPBR_FILM_ESTIMATE_CRITICAL_SEGMENTS;
-            float threshold = 1.0f;
-            if (!last)
+            // Bounds at or above 1 (past every threshold) are not cuts.
+            if (next_share < OPENPBR_FILM_ESTIMATE_SHARE_SEGMENTS && share_bound < threshold)
             {
-                const float step = OPENPBR_FILM_ESTIMATE_CRITICAL_SEGMENTS > 2
-                                       ? float(cut) / float(OPENPBR_FILM_ESTIMATE_CRITICAL_SEGMENTS - 2)
-                                       : 0.5f;
-                const float w = OPENPBR_FILM_ESTIMATE_FIRST_CUT *
-                                pow(OPENPBR_FILM_ESTIMATE_LAST_CUT / OPENPBR_FILM_ESTIMATE_FIRST_CUT, step);
-                threshold = sqrt(lowest * lowest + w * w);
-            }
-            for (int quartile = 0; quartile < 3; ++quartile)
-            {
-                if (next_quartile == quartile && quartiles[quartile] < threshold)
+                if (share_bound > lowest)
                 {
-                    if (quartiles[quartile] > lowest)
-                    {
-                        cuts[cut_count] = quartiles[quartile];
-                        ++cut_count;
-                    }
-                    ++next_quartile;
+                    cuts[cut_count] = share_bound;
+                    ++cut_count;
                 }
+                ++next_share;
+                share_bound = next_share < OPENPBR_FILM_ESTIMATE_SHARE_SEGMENTS
+                                  ? openpbr_film_lobe_node(table, next_share * OPENPBR_FILM_ESTIMATE_SHARE_STEP, 0)
+                                  : 2.0f;
             }
-            if (!last)
+            else if (next_threshold < OPENPBR_FILM_ESTIMATE_CRITICAL_SEGMENTS - 1)
             {
                 cuts[cut_count] = threshold;
                 ++cut_count;
+                ++next_threshold;
+                threshold = next_threshold < OPENPBR_FILM_ESTIMATE_CRITICAL_SEGMENTS - 1
+                                ? openpbr_film_estimate_threshold(lowest, next_threshold)
+                                : 1.0f;
             }
         }
         cuts[cut_count] = 2.0f;
@@ -541,6 +606,18 @@ OPENPBR_FUNC OpenPBR_FresnelPair openpbr_base_film_estimate(OPENPBR_IN(OpenPBR_F
         const float cut = cuts[index];
         vec2 end = at_view || narrow ? vec2(1.0f, view.z) : openpbr_film_lobe_cumulative(table, cut);
         end = end.x > start.x ? end : start;
+        // A sliver of the lobe's light joins the next segment, except at a critical cosine: a
+        // segment of share s below 2 m (m = OPENPBR_FILM_ESTIMATE_MIN_SHARE) keeps the share
+        // 2 (s - m) of it, nothing below m, so the estimate stays continuous in the view and the
+        // stack (dropping a cut outright made it jump by 1e-4 relative where a share crossed m:
+        // CPU against GPU-like rounding, query 1813542 of tests/checks/test_conformance.cpp).
+        const float natural_share = end.x - start.x;
+        const bool mergeable = cut != base_critical && cut != film_critical && index + 1 < cut_count;
+        const float kept =
+            mergeable && natural_share < 2.0f * OPENPBR_FILM_ESTIMATE_MIN_SHARE
+                ? clamp(2.0f - 2.0f * OPENPBR_FILM_ESTIMATE_MIN_SHARE / max(natural_share, 1e-12f), 0.0f, 1.0f)
+                : 1.0f;
+        end = start + kept * (end - start);
         const float share = end.x - start.x;
         // Below the base's critical cosine the dielectric's change is 0 (total reflection, filmed
         // or not): only the metal there.
