@@ -145,13 +145,25 @@
 #endif
 // Table 5, the microfacet cosines a GGX reflection lobe reflects at (host/tables/
 // film_table_generator.h; read by openpbr_film_lobe_cumulative for the thin film's lobe
-// averages): OPENPBR_LUT_FILM_QUANTILE_SIZE nodes on its probability axis (2^steps + 1, for the
-// look-up's bisection of OPENPBR_LUT_FILM_SEARCH_STEPS steps), OPENPBR_LUT_FILM_SIZE on its view
-// (c_mu) and roughness (c_r) axes, two channels (the quantile and the first partial moment),
-// e.g. 33 x 32 x 32 x 2. Measured against the dense lobe average (tests/bsdf/test_film_estimate.cpp,
-// docs/thin-film-estimate.md): 17 probability nodes doubled the largest error of the film's
-// change under a coat of IOR 1.6 (0.20 against 0.10 with 33; 65 gave 0.10).
-#define OPENPBR_LUT_FILM_QUANTILE_SIZE 33
+// averages): OPENPBR_LUT_FILM_QUANTILE_SIZE nodes on its probability axis, OPENPBR_LUT_FILM_SIZE
+// on its view (c_mu) and roughness (c_r) axes, two channels (the quantile and the first partial
+// moment), e.g. 41 x 32 x 32 x 2. The probability nodes (openpbr_film_lobe_probability) are
+// OPENPBR_LUT_FILM_CORE_SIZE even ones, p = j / (OPENPBR_LUT_FILM_CORE_SIZE - 1) (e.g. 33: the
+// estimate's equal shares and quartiles are among them), and OPENPBR_LUT_FILM_TAIL_NODES more
+// in each tail between the first even node and the end, halving towards it (e.g. 4: 1/64,
+// 1/128, 1/256 and 1/512 from each end). Measured against the dense lobe average
+// (tests/bsdf/test_film_estimate.cpp, docs/thin-film-estimate.md): 17 even nodes doubled the
+// largest error of the film's change under a coat of IOR 1.6 (0.20 against 0.10 with 33; 65 gave
+// 0.10). The tail nodes: a GGX lobe's first and last 1/32 of light spans cosines far from the
+// rest (view cos 0.5, alpha 0.0167: the first 1/32 spans 0.25-0.47), where a film's critical
+// cosine can lie and its thresholds do (film 1.4 under a medium of IOR 1.565, critical cosine
+// 0.447): one cell there put 0.0099 of the light below 0.447 where the lobe has 0.0145, and the
+// change of a 1.5 um film 0.013 low; with the tail nodes 0.003 (docs/thin-film-estimate.md).
+#define OPENPBR_LUT_FILM_CORE_SIZE 33
+#define OPENPBR_LUT_FILM_TAIL_NODES 4
+#define OPENPBR_LUT_FILM_QUANTILE_SIZE (OPENPBR_LUT_FILM_CORE_SIZE + 2 * OPENPBR_LUT_FILM_TAIL_NODES)
+// Bisection steps over the cells between the even nodes 1 and OPENPBR_LUT_FILM_CORE_SIZE - 2
+// (the tails' cells take fewer): 2^steps = OPENPBR_LUT_FILM_CORE_SIZE - 1, e.g. 5 for 33.
 #define OPENPBR_LUT_FILM_SEARCH_STEPS 5
 #define OPENPBR_LUT_FILM_SIZE 32
 #define OPENPBR_LUT_FILM_CHANNEL_COUNT 2
@@ -859,6 +871,26 @@ OPENPBR_FUNC float openpbr_film_lobe_node(OPENPBR_IN(OpenPBR_FilmLobeTable) tabl
     return mix(low_r, high_r, table.r_weight);
 }
 
+// The probability p of table 5's node (OPENPBR_LUT_FILM_QUANTILE_SIZE nodes, see the sizes
+// above): the even nodes j / (OPENPBR_LUT_FILM_CORE_SIZE - 1) between the tails, and in each
+// tail OPENPBR_LUT_FILM_TAIL_NODES nodes halving towards its end (1/64 down to 1/512 from each
+// end with 33 even nodes and 4 tail nodes). Exact in float (powers of two).
+OPENPBR_FUNC float openpbr_film_lobe_probability(int node)
+{
+    const int last = OPENPBR_LUT_FILM_QUANTILE_SIZE - 1;
+    const int from_end = min(max(min(node, last - node), 0), last / 2);
+    const float step = 1.0f / float(OPENPBR_LUT_FILM_CORE_SIZE - 1);
+    const float from_end_probability =
+        from_end > OPENPBR_LUT_FILM_TAIL_NODES
+            ? float(from_end - OPENPBR_LUT_FILM_TAIL_NODES) * step
+            : (from_end > 0 ? step / float(1 << (OPENPBR_LUT_FILM_TAIL_NODES + 1 - from_end)) : 0.0f);
+    return node <= last - node ? from_end_probability : 1.0f - from_end_probability;
+}
+
+// Table 5's node at the even probability j / (OPENPBR_LUT_FILM_CORE_SIZE - 1), 0 < j <
+// OPENPBR_LUT_FILM_CORE_SIZE - 1 (e.g. the quartiles: j = 8, 16, 24 of 32).
+OPENPBR_FUNC int openpbr_film_lobe_even_node(int j) { return j + OPENPBR_LUT_FILM_TAIL_NODES; }
+
 // Inside a probability cell [p_i, p_i+1] of table 5, c is modelled as a power of the cell's
 // fractional probability t, skewed towards the end the cell's mean lies nearer to:
 //   c(t) = q0 + (q1 - q0) t^k            where the mean is in the cell's lower half,
@@ -880,9 +912,10 @@ struct OpenPBR_FilmLobeCell
     bool upper;      // skewed towards q1 (the mirrored form)
 };
 
-OPENPBR_FUNC OpenPBR_FilmLobeCell openpbr_film_lobe_cell(OPENPBR_IN(OpenPBR_FilmLobeTable) table, int index)
+// The cell between nodes index and index + 1, cell_probability = p_index+1 - p_index.
+OPENPBR_FUNC OpenPBR_FilmLobeCell openpbr_film_lobe_cell(OPENPBR_IN(OpenPBR_FilmLobeTable) table, int index,
+                                                         float cell_probability)
 {
-    const float cell_probability = 1.0f / float(OPENPBR_LUT_FILM_QUANTILE_SIZE - 1);
     OpenPBR_FilmLobeCell cell;
     cell.low = openpbr_film_lobe_node(table, index, 0);
     cell.width = max(openpbr_film_lobe_node(table, index + 1, 0) - cell.low, 0.0f);
@@ -931,18 +964,32 @@ OPENPBR_FUNC float openpbr_film_lobe_cell_cosine(OPENPBR_IN(OpenPBR_FilmLobeCell
 // model above (exact at the nodes, never decreasing in x).
 OPENPBR_FUNC vec2 openpbr_film_lobe_cumulative(OPENPBR_IN(OpenPBR_FilmLobeTable) table, float x)
 {
+    // The cells between the first and the last even node inside the ends (p = 1/32 and 31/32),
+    // or one tail's: as many node reads as a bisection over the even nodes alone.
     const int last = OPENPBR_LUT_FILM_QUANTILE_SIZE - 1;
-    if (x <= openpbr_film_lobe_node(table, 0, 0))
+    const int first_even = openpbr_film_lobe_even_node(1);
+    const int last_even = openpbr_film_lobe_even_node(OPENPBR_LUT_FILM_CORE_SIZE - 2);
+    int low = first_even;
+    int high = last_even;
+    if (x < openpbr_film_lobe_node(table, first_even, 0))
     {
-        return vec2(0.0f);
+        if (x <= openpbr_film_lobe_node(table, 0, 0))
+        {
+            return vec2(0.0f);
+        }
+        low = 0;
+        high = first_even;
     }
-    if (x >= openpbr_film_lobe_node(table, last, 0))
+    else if (x >= openpbr_film_lobe_node(table, last_even, 0))
     {
-        return vec2(1.0f, openpbr_film_lobe_node(table, last, 1));
+        if (x >= openpbr_film_lobe_node(table, last, 0))
+        {
+            return vec2(1.0f, openpbr_film_lobe_node(table, last, 1));
+        }
+        low = last_even;
+        high = last;
     }
-    int low = 0;
-    int high = last;
-    for (int step = 0; step < OPENPBR_LUT_FILM_SEARCH_STEPS; ++step)
+    for (int step = 0; step < OPENPBR_LUT_FILM_SEARCH_STEPS && high - low > 1; ++step)
     {
         const int middle = (low + high) / 2;
         if (openpbr_film_lobe_node(table, middle, 0) <= x)
@@ -954,10 +1001,12 @@ OPENPBR_FUNC vec2 openpbr_film_lobe_cumulative(OPENPBR_IN(OpenPBR_FilmLobeTable)
             high = middle;
         }
     }
-    const OpenPBR_FilmLobeCell cell = openpbr_film_lobe_cell(table, low);
+    const float p0 = openpbr_film_lobe_probability(low);
+    const float cell_probability = openpbr_film_lobe_probability(low + 1) - p0;
+    const OpenPBR_FilmLobeCell cell = openpbr_film_lobe_cell(table, low, cell_probability);
     const vec2 below = openpbr_film_lobe_cell_below(cell, x);
     const float m1 = openpbr_film_lobe_node(table, low, 1);
-    return vec2((float(low) + below.x) / float(last), m1 + (openpbr_film_lobe_node(table, low + 1, 1) - m1) * below.y);
+    return vec2(p0 + cell_probability * below.x, m1 + (openpbr_film_lobe_node(table, low + 1, 1) - m1) * below.y);
 }
 
 // The cosine below which a fraction p of the lobe's light lies, Q(p), with the cell model above
@@ -966,10 +1015,28 @@ OPENPBR_FUNC vec2 openpbr_film_lobe_cumulative(OPENPBR_IN(OpenPBR_FilmLobeTable)
 // segment whose own is about 0.1).
 OPENPBR_FUNC float openpbr_film_lobe_quantile(OPENPBR_IN(OpenPBR_FilmLobeTable) table, float p)
 {
-    const int last = OPENPBR_LUT_FILM_QUANTILE_SIZE - 1;
-    const float f = clamp(p, 0.0f, 1.0f) * float(last);
-    const int low = min(int(f), last - 1);
-    return openpbr_film_lobe_cell_cosine(openpbr_film_lobe_cell(table, low), f - float(low));
+    // The cell holding p: between the tails from the even nodes' step directly, in a tail its
+    // nodes one by one (no table reads either way).
+    const float target = clamp(p, 0.0f, 1.0f);
+    const float step = 1.0f / float(OPENPBR_LUT_FILM_CORE_SIZE - 1);
+    const float f = target * float(OPENPBR_LUT_FILM_CORE_SIZE - 1);
+    const int even = min(int(f), OPENPBR_LUT_FILM_CORE_SIZE - 2);
+    int low = even + OPENPBR_LUT_FILM_TAIL_NODES;
+    float p0 = float(even) * step;
+    float cell_probability = step;
+    if (f < 1.0f || f >= float(OPENPBR_LUT_FILM_CORE_SIZE - 2))
+    {
+        const int first = f < 1.0f ? 0 : OPENPBR_LUT_FILM_QUANTILE_SIZE - 2 - OPENPBR_LUT_FILM_TAIL_NODES;
+        low = first;
+        for (int node = 1; node <= OPENPBR_LUT_FILM_TAIL_NODES; ++node)
+        {
+            low = openpbr_film_lobe_probability(first + node) <= target ? first + node : low;
+        }
+        p0 = openpbr_film_lobe_probability(low);
+        cell_probability = openpbr_film_lobe_probability(low + 1) - p0;
+    }
+    const float t = clamp((target - p0) / cell_probability, 0.0f, 1.0f);
+    return openpbr_film_lobe_cell_cosine(openpbr_film_lobe_cell(table, low, cell_probability), t);
 }
 
 // The whole lobe: (1, E[c]).

@@ -39,7 +39,7 @@
 //   2D  32 x 32           mu, fuzz roughness        OPENPBR_FUZZ_LTC_A_OFFSET (fuzz table) OPENPBR_LUT_TEXTURE_FUZZ_LTC_B 6
 //   2D  32 x 32           mu, fuzz roughness        OPENPBR_FUZZ_LTC_B_OFFSET (fuzz table) OPENPBR_LUT_TEXTURE_FUZZ_LTC_R 7
 //   2D  32 x 32           mu, fuzz roughness        OPENPBR_FUZZ_LTC_R_OFFSET (fuzz table)
-//   OPENPBR_LUT_TEXTURE_FILM_LOBE 8  3D  33 x 32 x 64  p, c_mu, channel x 32 + c_r  OPENPBR_LUT_FILM_OFFSET
+//   OPENPBR_LUT_TEXTURE_FILM_LOBE 8  3D  41 x 32 x 64  p, c_mu, channel x 32 + c_r  OPENPBR_LUT_FILM_OFFSET
 // The film table's two channels (the quantile and the first partial moment) are stacked along
 // z; it is read at texel centres only (the library interpolates its nodes itself), so its
 // filtering mode does not matter.

@@ -22,8 +22,19 @@
 namespace openpbr::host {
 
 static_assert(OPENPBR_LUT_FILM_OFFSET == OPENPBR_LUT_COMPENSATION_COUNT, "table 5 follows the compensation tables");
-static_assert((1 << OPENPBR_LUT_FILM_SEARCH_STEPS) == OPENPBR_LUT_FILM_QUANTILE_SIZE - 1,
-              "the look-up's bisection needs 2^steps cells on the probability axis");
+static_assert((1 << OPENPBR_LUT_FILM_SEARCH_STEPS) == OPENPBR_LUT_FILM_CORE_SIZE - 1 &&
+                  (1 << OPENPBR_LUT_FILM_SEARCH_STEPS) >= OPENPBR_LUT_FILM_TAIL_NODES + 1,
+              "the look-up's bisection needs 2^steps cells between the even nodes, and as many for a tail");
+
+std::vector<double> film_lobe_probabilities()
+{
+    std::vector<double> probabilities(OPENPBR_LUT_FILM_QUANTILE_SIZE);
+    for (int k = 0; k < OPENPBR_LUT_FILM_QUANTILE_SIZE; ++k)
+    {
+        probabilities[std::size_t(k)] = double(openpbr_film_lobe_probability(k));
+    }
+    return probabilities;
+}
 
 std::vector<FilmLobePoint> film_lobe_points(const double mu, const double alpha, const int lattice_size)
 {
@@ -49,8 +60,9 @@ std::vector<FilmLobePoint> film_lobe_points(const double mu, const double alpha,
     return points;
 }
 
-std::vector<double> film_lobe_quantiles(std::vector<FilmLobePoint> points, const int quantile_size)
+std::vector<double> film_lobe_quantiles(std::vector<FilmLobePoint> points, const std::vector<double>& probabilities)
 {
+    const int quantile_size = int(probabilities.size());
     std::vector<double> result(std::size_t(OPENPBR_LUT_FILM_CHANNEL_COUNT * quantile_size), 0.0);
     double total = 0.0;
     for (const FilmLobePoint& point : points)
@@ -70,7 +82,7 @@ std::vector<double> film_lobe_quantiles(std::vector<FilmLobePoint> points, const
         }
         for (int k = 0; k < quantile_size; ++k)
         {
-            const double p = double(k) / double(quantile_size - 1);
+            const double p = probabilities[std::size_t(k)];
             result[std::size_t(k)] = mean;
             result[std::size_t(quantile_size + k)] = p * mean;
         }
@@ -95,7 +107,7 @@ std::vector<double> film_lobe_quantiles(std::vector<FilmLobePoint> points, const
     result[0] = first_weighted();
     for (int k = 1; k < quantile_size; ++k)
     {
-        const double target = double(k) / double(quantile_size - 1);
+        const double target = probabilities[std::size_t(k)];
         while (next < points.size() && accumulated + points[next].weight / total <= target)
         {
             const double probability = points[next].weight / total;
@@ -136,9 +148,10 @@ std::vector<double> film_lobe_quantiles(std::vector<FilmLobePoint> points, const
 
 std::vector<float> generate_film_table(const FilmTableOptions& options)
 {
-    const int quantile_size = options.quantile_size > 0 ? options.quantile_size : OPENPBR_LUT_FILM_QUANTILE_SIZE;
+    const std::vector<double> probabilities = film_lobe_probabilities();
+    const int quantile_size = int(probabilities.size());
     const int size = options.size > 0 ? options.size : OPENPBR_LUT_FILM_SIZE;
-    if (quantile_size < 2 || size < 2 || options.lattice_size < 2 || options.threads < 0)
+    if (size < 2 || options.lattice_size < 2 || options.threads < 0)
     {
         throw std::invalid_argument("film table: sizes must be at least 2 and threads at least 0");
     }
@@ -155,7 +168,7 @@ std::vector<float> generate_film_table(const FilmTableOptions& options)
                 const double mu = std::max(c_mu * c_mu, 1e-4);
                 const double alpha = std::max(c_r * c_r, 1e-4);
                 const std::vector<double> quantiles =
-                    film_lobe_quantiles(film_lobe_points(mu, alpha, options.lattice_size), quantile_size);
+                    film_lobe_quantiles(film_lobe_points(mu, alpha, options.lattice_size), probabilities);
                 for (int channel = 0; channel < channels; ++channel)
                 {
                     for (int k = 0; k < quantile_size; ++k)
@@ -185,8 +198,7 @@ std::vector<float> generate_film_table(const FilmTableOptions& options)
 std::string describe(const FilmTableOptions& options)
 {
     std::ostringstream text;
-    text << "openpbr lutgen --only film: film lobe cosines "
-         << (options.quantile_size > 0 ? options.quantile_size : OPENPBR_LUT_FILM_QUANTILE_SIZE) << " x "
+    text << "openpbr lutgen --only film: film lobe cosines " << OPENPBR_LUT_FILM_QUANTILE_SIZE << " x "
          << (options.size > 0 ? options.size : OPENPBR_LUT_FILM_SIZE) << " x "
          << (options.size > 0 ? options.size : OPENPBR_LUT_FILM_SIZE) << " x " << OPENPBR_LUT_FILM_CHANNEL_COUNT
          << " (Q, M1), lattice " << options.lattice_size << "^2 per cell";

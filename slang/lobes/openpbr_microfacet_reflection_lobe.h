@@ -397,14 +397,14 @@ OPENPBR_FUNC float openpbr_ggx_lobe_dielectric_reflection_albedo(float mu, float
 #ifndef OPENPBR_FILM_ESTIMATE_WIDE_WIDTH
 #define OPENPBR_FILM_ESTIMATE_WIDE_WIDTH 0.4f
 #endif
-#if (OPENPBR_LUT_FILM_QUANTILE_SIZE - 1) % OPENPBR_FILM_ESTIMATE_WIDE_SEGMENTS != 0
+#if (OPENPBR_LUT_FILM_CORE_SIZE - 1) % OPENPBR_FILM_ESTIMATE_WIDE_SEGMENTS != 0
 #error "OPENPBR_FILM_ESTIMATE_WIDE_SEGMENTS must divide table 5's probability intervals (32: 2, 4, 8, 16 or 32)"
 #endif
-#if (OPENPBR_LUT_FILM_QUANTILE_SIZE - 1) % OPENPBR_FILM_ESTIMATE_SHARE_SEGMENTS != 0
+#if (OPENPBR_LUT_FILM_CORE_SIZE - 1) % OPENPBR_FILM_ESTIMATE_SHARE_SEGMENTS != 0
 #error "OPENPBR_FILM_ESTIMATE_SHARE_SEGMENTS must divide table 5's probability intervals (32: 2, 4, 8, 16 or 32)"
 #endif
-#if (OPENPBR_LUT_FILM_QUANTILE_SIZE - 1) % 4 != 0
-#error "table 5's probability nodes must include the quartiles (OPENPBR_LUT_FILM_QUANTILE_SIZE = 4 k + 1)"
+#if (OPENPBR_LUT_FILM_CORE_SIZE - 1) % 4 != 0
+#error "table 5's even probability nodes must include the quartiles (OPENPBR_LUT_FILM_CORE_SIZE = 4 k + 1)"
 #endif
 #if OPENPBR_FILM_ESTIMATE_EVANESCENT_SEGMENTS < 1 || OPENPBR_FILM_ESTIMATE_PLAIN_SEGMENTS < 1
 #error "OPENPBR_FILM_ESTIMATE_EVANESCENT_SEGMENTS and OPENPBR_FILM_ESTIMATE_PLAIN_SEGMENTS must be at least 1"
@@ -418,8 +418,8 @@ OPENPBR_FUNC float openpbr_ggx_lobe_dielectric_reflection_albedo(float mu, float
     (OPENPBR_FILM_ESTIMATE_CRITICAL_CUTS > OPENPBR_FILM_ESTIMATE_PLAIN_SEGMENTS + OPENPBR_FILM_ESTIMATE_WIDE_SEGMENTS \
          ? OPENPBR_FILM_ESTIMATE_CRITICAL_CUTS                                                                        \
          : OPENPBR_FILM_ESTIMATE_PLAIN_SEGMENTS + OPENPBR_FILM_ESTIMATE_WIDE_SEGMENTS)
-// The probability step of table 5's nodes between equal shares (8 of 32 for quarters).
-#define OPENPBR_FILM_ESTIMATE_SHARE_STEP ((OPENPBR_LUT_FILM_QUANTILE_SIZE - 1) / OPENPBR_FILM_ESTIMATE_SHARE_SEGMENTS)
+// The step of table 5's even nodes between equal shares (8 of 32 for quarters).
+#define OPENPBR_FILM_ESTIMATE_SHARE_STEP ((OPENPBR_LUT_FILM_CORE_SIZE - 1) / OPENPBR_FILM_ESTIMATE_SHARE_SEGMENTS)
 
 OPENPBR_FUNC float openpbr_critical_cosine(float n, float n_o)
 {
@@ -503,13 +503,15 @@ OPENPBR_FUNC OpenPBR_FresnelPair openpbr_base_film_estimate(OPENPBR_IN(OpenPBR_F
     const OpenPBR_FilmLobeTable table =
         openpbr_film_lobe_table(view.z, sqrt(0.5f * (alpha.x * alpha.x + alpha.y * alpha.y)));
     // The lobe's quartiles: the cuts past c*, and the width and the median of a narrow lobe
-    // without a critical cosine. Table 5's probability nodes include them (33 nodes: p = 1/4 at
-    // node 8), so they are node reads, without the cell model of openpbr_film_lobe_quantile.
+    // without a critical cosine. Table 5's even probability nodes include them (p = 1/4 at even
+    // node 8 of 32), so they are node reads, without the cell model of openpbr_film_lobe_quantile.
     float quartiles[3];
     for (int quartile = 0; quartile < 3; ++quartile)
     {
         quartiles[quartile] =
-            at_view ? view.z : openpbr_film_lobe_node(table, (quartile + 1) * ((OPENPBR_LUT_FILM_QUANTILE_SIZE - 1) / 4), 0);
+            at_view ? view.z
+                    : openpbr_film_lobe_node(
+                          table, openpbr_film_lobe_even_node((quartile + 1) * ((OPENPBR_LUT_FILM_CORE_SIZE - 1) / 4)), 0);
     }
     const bool narrow =
         !at_view && lowest <= 0.0f && quartiles[2] - quartiles[0] < OPENPBR_FILM_ESTIMATE_NARROW_WIDTH * quartiles[1];
@@ -532,8 +534,10 @@ OPENPBR_FUNC OpenPBR_FresnelPair openpbr_base_film_estimate(OPENPBR_IN(OpenPBR_F
         for (int segment = 1; segment < segments; ++segment)
         {
             cuts[cut_count] =
-                wide ? openpbr_film_lobe_node(
-                           table, segment * ((OPENPBR_LUT_FILM_QUANTILE_SIZE - 1) / OPENPBR_FILM_ESTIMATE_WIDE_SEGMENTS), 0)
+                wide ? openpbr_film_lobe_node(table,
+                                              openpbr_film_lobe_even_node(segment * ((OPENPBR_LUT_FILM_CORE_SIZE - 1) /
+                                                                                     OPENPBR_FILM_ESTIMATE_WIDE_SEGMENTS)),
+                                              0)
                 : OPENPBR_FILM_ESTIMATE_PLAIN_SEGMENTS == 2
                     ? openpbr_film_lobe_total(table).y
                     : openpbr_film_lobe_quantile(table, float(segment) / float(OPENPBR_FILM_ESTIMATE_PLAIN_SEGMENTS));
@@ -568,7 +572,7 @@ OPENPBR_FUNC OpenPBR_FresnelPair openpbr_base_film_estimate(OPENPBR_IN(OpenPBR_F
         int next_threshold = 0;
         float threshold = openpbr_film_estimate_threshold(lowest, 0);
         int next_share = 1;
-        float share_bound = openpbr_film_lobe_node(table, OPENPBR_FILM_ESTIMATE_SHARE_STEP, 0);
+        float share_bound = openpbr_film_lobe_node(table, openpbr_film_lobe_even_node(OPENPBR_FILM_ESTIMATE_SHARE_STEP), 0);
         for (int step = 0; step < OPENPBR_FILM_ESTIMATE_CRITICAL_SEGMENTS + OPENPBR_FILM_ESTIMATE_SHARE_SEGMENTS - 2; ++step)
         {
             // Bounds at or above 1 (past every threshold) are not cuts.
@@ -581,7 +585,8 @@ OPENPBR_FUNC OpenPBR_FresnelPair openpbr_base_film_estimate(OPENPBR_IN(OpenPBR_F
                 }
                 ++next_share;
                 share_bound = next_share < OPENPBR_FILM_ESTIMATE_SHARE_SEGMENTS
-                                  ? openpbr_film_lobe_node(table, next_share * OPENPBR_FILM_ESTIMATE_SHARE_STEP, 0)
+                                  ? openpbr_film_lobe_node(
+                                        table, openpbr_film_lobe_even_node(next_share * OPENPBR_FILM_ESTIMATE_SHARE_STEP), 0)
                                   : 2.0f;
             }
             else if (next_threshold < OPENPBR_FILM_ESTIMATE_CRITICAL_SEGMENTS - 1)

@@ -55,8 +55,8 @@ TEST(FilmTable, ShippedCellsAreTheGeneratorsOutput)
     const FilmTableOptions options;
     for (const auto& [mu_index, r_index] : sample_cells())
     {
-        const std::vector<double> generated =
-            film_lobe_quantiles(film_lobe_points(mu_of(mu_index), alpha_of(r_index), options.lattice_size), quantile_size);
+        const std::vector<double> generated = film_lobe_quantiles(
+            film_lobe_points(mu_of(mu_index), alpha_of(r_index), options.lattice_size), film_lobe_probabilities());
         for (int channel = 0; channel < OPENPBR_LUT_FILM_CHANNEL_COUNT; ++channel)
         {
             for (int p = 0; p < quantile_size; ++p)
@@ -83,7 +83,7 @@ TEST(FilmTable, QuantilesAndPartialMomentsGrowWithTheProbability)
                 ASSERT_LE(q, 1.0f);
                 // E[c; c <= Q(p)] <= p Q(p) for cosines in [0, 1]; 1e-6 for float rounding of
                 // values of order 1.
-                const float share = float(p) / float(quantile_size - 1);
+                const float share = openpbr_film_lobe_probability(p);
                 ASSERT_LE(m1, share * q + 1e-6f);
                 if (p > 0)
                 {
@@ -159,7 +159,7 @@ TEST(FilmTable, MatchesTheLobeIntegratedOverLightDirections)
             {
                 below += cosine <= quantile ? weight : 0.0;
             }
-            const double share = double(p) / double(quantile_size - 1);
+            const double share = double(openpbr_film_lobe_probability(p));
             largest_share_difference = std::max(largest_share_difference, std::abs(below / integral.total - share));
             EXPECT_NEAR(below / integral.total, share, 0.01) << "mu " << mu << " alpha " << alpha << " p node " << p;
         }
@@ -189,8 +189,60 @@ TEST(FilmTableLookUp, ReturnsTheNodesAtTheirQuantiles)
                 continue;  // equal neighbours (a near-mirror lobe): the bisection may pick either
             }
             const vec2 at = openpbr_film_lobe_cumulative(table, q);
-            EXPECT_NEAR(at.x, float(p) / float(quantile_size - 1), 1e-5f);
+            EXPECT_NEAR(at.x, openpbr_film_lobe_probability(p), 1e-5f);
             EXPECT_NEAR(at.y, shipped_node(p, mu_index, r_index, 1), 1e-5f);
+        }
+    }
+}
+
+// The probability axis: from 0 to 1, increasing, the even nodes at j / 32 (the estimate's equal
+// shares and quartiles), the tail nodes halving towards each end, symmetric.
+TEST(FilmTable, ProbabilityNodesAreTheEvenNodesAndTheTails)
+{
+    const int last = quantile_size - 1;
+    EXPECT_EQ(openpbr_film_lobe_probability(0), 0.0f);
+    EXPECT_EQ(openpbr_film_lobe_probability(last), 1.0f);
+    for (int k = 1; k <= last; ++k)
+    {
+        EXPECT_GT(openpbr_film_lobe_probability(k), openpbr_film_lobe_probability(k - 1)) << "node " << k;
+        EXPECT_EQ(openpbr_film_lobe_probability(last - k), 1.0f - openpbr_film_lobe_probability(k)) << "node " << k;
+    }
+    for (int j = 1; j < OPENPBR_LUT_FILM_CORE_SIZE - 1; ++j)
+    {
+        EXPECT_EQ(openpbr_film_lobe_probability(openpbr_film_lobe_even_node(j)),
+                  float(j) / float(OPENPBR_LUT_FILM_CORE_SIZE - 1))
+            << "even node " << j;
+    }
+    for (int k = 1; k <= OPENPBR_LUT_FILM_TAIL_NODES; ++k)
+    {
+        EXPECT_EQ(openpbr_film_lobe_probability(k), 0.5f * openpbr_film_lobe_probability(k + 1)) << "tail node " << k;
+    }
+}
+
+// The quantile look-up returns the tabulated quantile at every node's probability (up to float
+// rounding of the cell arithmetic), the tail nodes included, and never decreases between them.
+TEST(FilmTableLookUp, QuantileReturnsTheNodesAndGrows)
+{
+    for (const auto& [mu_index, r_index] : sample_cells())
+    {
+        if (mu_index == size - 1 || r_index == size - 1)
+        {
+            continue;  // the last node is reached as the upper corner of the cell below it
+        }
+        const OpenPBR_FilmLobeTable table = {mu_index, r_index, 0.0f, 0.0f};
+        float previous = 0.0f;
+        for (int k = 0; k < quantile_size; ++k)
+        {
+            const float p = openpbr_film_lobe_probability(k);
+            EXPECT_NEAR(openpbr_film_lobe_quantile(table, p), shipped_node(k, mu_index, r_index, 0), 1e-5f)
+                << "mu node " << mu_index << " r node " << r_index << " p node " << k;
+            for (int step = 0; step < 8 && k + 1 < quantile_size; ++step)
+            {
+                const float between =
+                    openpbr_film_lobe_quantile(table, p + (openpbr_film_lobe_probability(k + 1) - p) * float(step) / 8.0f);
+                EXPECT_GE(between, previous - 1e-6f) << "mu node " << mu_index << " r node " << r_index << " p node " << k;
+                previous = between;
+            }
         }
     }
 }
