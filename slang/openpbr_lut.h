@@ -891,6 +891,13 @@ OPENPBR_FUNC float openpbr_film_lobe_probability(int node)
 // OPENPBR_LUT_FILM_CORE_SIZE - 1 (e.g. the quartiles: j = 8, 16, 24 of 32).
 OPENPBR_FUNC int openpbr_film_lobe_even_node(int j) { return j + OPENPBR_LUT_FILM_TAIL_NODES; }
 
+// The lobe's quantile at the even probability j / (OPENPBR_LUT_FILM_CORE_SIZE - 1), a node read
+// (e.g. its quartiles, j = 8, 16, 24 of 32).
+OPENPBR_FUNC float openpbr_film_lobe_even_quantile(OPENPBR_IN(OpenPBR_FilmLobeTable) table, int j)
+{
+    return openpbr_film_lobe_node(table, openpbr_film_lobe_even_node(j), 0);
+}
+
 // Inside a probability cell [p_i, p_i+1] of table 5, c is modelled as a power of the cell's
 // fractional probability t, skewed towards the end the cell's mean lies nearer to:
 //   c(t) = q0 + (q1 - q0) t^k            where the mean is in the cell's lower half,

@@ -510,8 +510,7 @@ OPENPBR_FUNC OpenPBR_FresnelPair openpbr_base_film_estimate(OPENPBR_IN(OpenPBR_F
     {
         quartiles[quartile] =
             at_view ? view.z
-                    : openpbr_film_lobe_node(
-                          table, openpbr_film_lobe_even_node((quartile + 1) * ((OPENPBR_LUT_FILM_CORE_SIZE - 1) / 4)), 0);
+                    : openpbr_film_lobe_even_quantile(table, (quartile + 1) * ((OPENPBR_LUT_FILM_CORE_SIZE - 1) / 4));
     }
     const bool narrow =
         !at_view && lowest <= 0.0f && quartiles[2] - quartiles[0] < OPENPBR_FILM_ESTIMATE_NARROW_WIDTH * quartiles[1];
@@ -534,10 +533,8 @@ OPENPBR_FUNC OpenPBR_FresnelPair openpbr_base_film_estimate(OPENPBR_IN(OpenPBR_F
         for (int segment = 1; segment < segments; ++segment)
         {
             cuts[cut_count] =
-                wide ? openpbr_film_lobe_node(table,
-                                              openpbr_film_lobe_even_node(segment * ((OPENPBR_LUT_FILM_CORE_SIZE - 1) /
-                                                                                     OPENPBR_FILM_ESTIMATE_WIDE_SEGMENTS)),
-                                              0)
+                wide ? openpbr_film_lobe_even_quantile(
+                           table, segment * ((OPENPBR_LUT_FILM_CORE_SIZE - 1) / OPENPBR_FILM_ESTIMATE_WIDE_SEGMENTS))
                 : OPENPBR_FILM_ESTIMATE_PLAIN_SEGMENTS == 2
                     ? openpbr_film_lobe_total(table).y
                     : openpbr_film_lobe_quantile(table, float(segment) / float(OPENPBR_FILM_ESTIMATE_PLAIN_SEGMENTS));
@@ -572,7 +569,7 @@ OPENPBR_FUNC OpenPBR_FresnelPair openpbr_base_film_estimate(OPENPBR_IN(OpenPBR_F
         int next_threshold = 0;
         float threshold = openpbr_film_estimate_threshold(lowest, 0);
         int next_share = 1;
-        float share_bound = openpbr_film_lobe_node(table, openpbr_film_lobe_even_node(OPENPBR_FILM_ESTIMATE_SHARE_STEP), 0);
+        float share_bound = openpbr_film_lobe_even_quantile(table, OPENPBR_FILM_ESTIMATE_SHARE_STEP);
         for (int step = 0; step < OPENPBR_FILM_ESTIMATE_CRITICAL_SEGMENTS + OPENPBR_FILM_ESTIMATE_SHARE_SEGMENTS - 2; ++step)
         {
             // Bounds at or above 1 (past every threshold) are not cuts.
@@ -585,8 +582,7 @@ OPENPBR_FUNC OpenPBR_FresnelPair openpbr_base_film_estimate(OPENPBR_IN(OpenPBR_F
                 }
                 ++next_share;
                 share_bound = next_share < OPENPBR_FILM_ESTIMATE_SHARE_SEGMENTS
-                                  ? openpbr_film_lobe_node(
-                                        table, openpbr_film_lobe_even_node(next_share * OPENPBR_FILM_ESTIMATE_SHARE_STEP), 0)
+                                  ? openpbr_film_lobe_even_quantile(table, next_share * OPENPBR_FILM_ESTIMATE_SHARE_STEP)
                                   : 2.0f;
             }
             else if (next_threshold < OPENPBR_FILM_ESTIMATE_CRITICAL_SEGMENTS - 1)
