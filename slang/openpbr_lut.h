@@ -898,6 +898,16 @@ OPENPBR_FUNC float openpbr_film_lobe_even_quantile(OPENPBR_IN(OpenPBR_FilmLobeTa
     return openpbr_film_lobe_node(table, openpbr_film_lobe_even_node(j), 0);
 }
 
+// (P, M1) at the even probability j / (OPENPBR_LUT_FILM_CORE_SIZE - 1), 0 <= j <=
+// OPENPBR_LUT_FILM_CORE_SIZE - 1: the light of the lobe below its quantile there, a node read
+// (e.g. j = 16: (1/2, E[c; c <= Q(1/2)])).
+OPENPBR_FUNC vec2 openpbr_film_lobe_even_moment(OPENPBR_IN(OpenPBR_FilmLobeTable) table, int j)
+{
+    const int last = OPENPBR_LUT_FILM_CORE_SIZE - 1;
+    const int node = j <= 0 ? 0 : (j >= last ? OPENPBR_LUT_FILM_QUANTILE_SIZE - 1 : openpbr_film_lobe_even_node(j));
+    return vec2(float(j) / float(last), openpbr_film_lobe_node(table, node, 1));
+}
+
 // Inside a probability cell [p_i, p_i+1] of table 5, c is modelled as a power of the cell's
 // fractional probability t, skewed towards the end the cell's mean lies nearer to:
 //   c(t) = q0 + (q1 - q0) t^k            where the mean is in the cell's lower half,

@@ -568,9 +568,10 @@ std::vector<AccuracyRow> run_accuracy_study(const AccuracyOptions& requested)
     const std::vector<AccuracyMaterial> white_materials = {metal(1.0f, 0.2f), metal(1.0f, 0.5f), metal(1.0f, 0.9f),
                                                            glass(0.2f),       glass(0.5f),       glass(0.9f)};
     // The film-estimate knob's furnace: a white diffuse base under a white film (IOR 1.4) under a
-    // white coat of weight 1 (IOR 1.6), the stack whose film turns evanescent and whose base
-    // reflects totally inside the lobe (README "Known limits"), films of 0.3-1.5 um, coat and
-    // specular roughness 0.1-0.8.
+    // white coat of weight 1 (IOR 1.6), the stack whose film turns evanescent inside the lobe
+    // (past its critical cosine 0.484; the base's IOR relative to the coat is inverted to 1.067 by
+    // the spec's rule, so it does not reflect totally), films of 0.3-1.5 um, coat and specular
+    // roughness 0.1-0.8.
     std::vector<AccuracyMaterial> white_film_materials;
     for (const float thickness : {0.3f, 0.6f, 0.9f, 1.5f})
     {

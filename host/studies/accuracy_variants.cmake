@@ -135,14 +135,16 @@ openpbr_accuracy_variant(thin_film_fast KNOB "thin film" SETTING "fast thin film
   DEFINES OPENPBR_THIN_FILM_MODEL=OPENPBR_THIN_FILM_MODEL_FAST)
 # The thin film's albedo estimate (openpbr_base_film_estimate): the film at the view only (what
 # most implementations do), and session 19's cuts (two halves for every lobe without a critical
-# cosine that is not narrow; past one the quartiles, 12 thresholds in w and 4 evanescent
-# segments, no sliver merged; docs/thin-film-estimate.md). CPU only: the estimate runs in
+# cosine that is not narrow, equal shares since session 23, no tail on its own; past one the
+# quartiles, 12 thresholds in w and 4 evanescent segments, no sliver merged;
+# docs/thin-film-estimate.md). CPU only: the estimate runs in
 # prepare, and its furnace row is a CPU measurement.
 openpbr_accuracy_variant(film_estimate_at_view KNOB "film estimate" SETTING "film at the view only" CPU_ONLY
   DEFINES OPENPBR_FILM_ESTIMATE_METHOD=OPENPBR_FILM_ESTIMATE_AT_VIEW)
 openpbr_accuracy_variant(film_estimate_session19 KNOB "film estimate" SETTING "session 19's cuts (quartiles past a critical cosine)"
   CPU_ONLY DEFINES OPENPBR_FILM_ESTIMATE_CRITICAL_SEGMENTS=12 OPENPBR_FILM_ESTIMATE_EVANESCENT_SEGMENTS=4
-  OPENPBR_FILM_ESTIMATE_SHARE_SEGMENTS=4 OPENPBR_FILM_ESTIMATE_WIDE_WIDTH=3.0f OPENPBR_FILM_ESTIMATE_MIN_SHARE=0.0f)
+  OPENPBR_FILM_ESTIMATE_SHARE_SEGMENTS=4 OPENPBR_FILM_ESTIMATE_WIDE_WIDTH=3.0f OPENPBR_FILM_ESTIMATE_MIN_SHARE=0.0f
+  OPENPBR_FILM_ESTIMATE_VERY_WIDE_RANGE=3.0f OPENPBR_FILM_ESTIMATE_TAIL_VIEW=0.0f)
 # The precision knob: the shipped build once more under its own name, and the double build.
 openpbr_accuracy_variant(single_precision KNOB "precision" SETTING "C++ float (shipped)" FACTORY shipped CPU_ONLY)
 openpbr_accuracy_variant(double_precision KNOB "precision" SETTING "C++ double" FACTORY double CPU_ONLY DOUBLE_REFERENCE)

@@ -301,22 +301,31 @@ OPENPBR_FUNC float openpbr_ggx_lobe_dielectric_reflection_albedo(float mu, float
 //    the filmed furnace's worst cos 0.5 row under a coat of IOR 1.6 went from 1.008 into the band. A sliver of
 //    light under OPENPBR_FILM_ESTIMATE_MIN_SHARE between two cuts joins the next segment (a
 //    GGX lobe's long tails made every cut a film evaluation);
-//  * without any critical cosine (in air, under a coat less dense than film and base): two
-//    halves cut at the lobe's mean cosine (OPENPBR_FILM_ESTIMATE_PLAIN_SEGMENTS = 2), or more
-//    segments of equal share. A film nearly index-matched to the medium above it (film 1.2 under
-//    a half coat of IOR 1.3 in air: n_o 1.15) has the sqrt-like bend of a critical cosine just
-//    below 0 (n_f cos_f = sqrt(n_f^2 - n_o^2 + n_o^2 c^2)): two halves erred by 0.042 there at
-//    view cosine 0.1 (the furnace's worst losses, 0.960), four segments by 0.011. So a wide
-//    lobe, whose interquartile range of c is at least OPENPBR_FILM_ESTIMATE_WIDE_WIDTH times its
-//    median (rough lobes and grazing views, whose light reaches the grazing microfacets where
-//    the film's amplitudes bend), is OPENPBR_FILM_ESTIMATE_WIDE_SEGMENTS quarters; the rest keep
-//    the two halves, which is what every-lobe prepare's budget allows. A narrow lobe
-//    there, whose interquartile range of c is below OPENPBR_FILM_ESTIMATE_NARROW_WIDTH times its
-//    median, is one segment evaluated at its median (one film evaluation instead of two, as the
-//    mirror limit's one at the view): the film's amplitudes and the plain Fresnel factor change
-//    on the scale of c itself (their derivatives grow like 1 / c towards grazing), so a lobe
-//    narrow against its median cosine sees them nearly linear, and its fringes are averaged by
-//    the lobe's path spread as any segment's are (Belcour & Barla 2017's Gaussian phase average).
+//  * without any critical cosine (in air, under a coat less dense than film and base): equal
+//    shares of the lobe's light cut at table 5's even nodes, two halves
+//    (OPENPBR_FILM_ESTIMATE_PLAIN_SEGMENTS = 2), and the upper tail on its own at views below
+//    OPENPBR_FILM_ESTIMATE_TAIL_VIEW. A film nearly index-matched to the medium above it (film
+//    1.2 under a half coat of IOR 1.3 in air: n_o 1.15) has the sqrt-like bend of a critical
+//    cosine just below 0 (n_f cos_f = sqrt(n_f^2 - n_o^2 + n_o^2 c^2)): two halves erred by
+//    0.042 there at view cosine 0.1 (the furnace's worst losses, 0.960), four segments by 0.011.
+//    So a wide lobe, whose interquartile range of c is at least OPENPBR_FILM_ESTIMATE_WIDE_WIDTH
+//    times its median (rough lobes and grazing views, whose light reaches the grazing
+//    microfacets where the film's amplitudes bend), is OPENPBR_FILM_ESTIMATE_WIDE_SEGMENTS
+//    quarters, and one whose interquartile range is at least
+//    OPENPBR_FILM_ESTIMATE_VERY_WIDE_RANGE in c itself (alpha 0.1 below view cos 0.04, 0.2
+//    below about 0.35, 0.4 below about 0.7) OPENPBR_FILM_ESTIMATE_VERY_WIDE_SEGMENTS eighths. Session 23
+//    (docs/thin-film-estimate.md "The upper tail on its own"): a GGX lobe's long upper tail (at view cos 0.1 and alpha 0.013
+//    the middle three quarters of its light lie between c = 0.089 and 0.110, the last eighth
+//    above 0.120, reaching far up) pulled the upper half's mean to where the film's change bends, the largest remaining
+//    errors of the dense reference without a critical cosine (0.034 high, 0.020 low); the last eighth as a segment of its
+//    own, evaluated at its median, cut them to 0.0087 / 0.0085. Every cut and every segment's quartiles are even nodes, so
+//    the shares, means and spreads are node reads (the cut at the lobe's mean before took a search and the cell model: the
+//    tail's evaluation is paid by what that saved). A narrow lobe there, whose interquartile range of c is below
+//    OPENPBR_FILM_ESTIMATE_NARROW_WIDTH times its median, is one segment evaluated at its median (one film evaluation
+//    instead of two, as the mirror limit's one at the view): the film's amplitudes and the plain Fresnel factor change on
+//    the scale of c itself (their derivatives grow like 1 / c towards grazing), so a lobe narrow against its median cosine
+//    sees them nearly linear, and its fringes are averaged by the lobe's path spread as any segment's are (Belcour & Barla
+//    2017's Gaussian phase average).
 // Segments at or below c* are evaluated at their median cosine (the film's quantities change
 // like sqrt there, and quantiles, unlike means, follow any monotonic change of variable), the
 // others at their mean. The film's phase varies across a segment; averaging e^{i m delta} over it
@@ -324,11 +333,11 @@ OPENPBR_FUNC float openpbr_ggx_lobe_dielectric_reflection_albedo(float mu, float
 // its optical path 2 n_f d cos_f to the film (OpenPBR_ThinFilmInputs.optical_path_spread_um), from
 // its quartiles (openpbr_film_segment_point). Up to OPENPBR_FILM_ESTIMATE_MAX_SEGMENTS film
 // evaluations past a critical cosine (fewer where the cuts hold slivers of light: they join the
-// next segment), both bases in each (they share the film's harmonics); one, two or four in air
-// or under a coat less dense than film and base. The segments depend on the view's cosine and the lobe's roughness only, so
-// the estimate of an isotropic lobe does not depend on the view's azimuth; an anisotropic lobe reads the table at its
-// root-mean-square alpha. Measured against a 96 x 96-node lobe average (tests/bsdf/test_film_estimate.cpp) and a 128 x
-// 128-node one (docs/thin-film-estimate.md). The estimate's method, e.g.
+// next segment), both bases in each (they share the film's harmonics); one, two, four or eight
+// (and the tail) in air or under a coat less dense than film and base. The segments depend on the view's cosine and the
+// lobe's roughness only, so the estimate of an isotropic lobe does not depend on the view's azimuth; an anisotropic lobe
+// reads the table at its root-mean-square alpha. Measured against a 96 x 96-node lobe average
+// (tests/bsdf/test_film_estimate.cpp) and a 128 x 128-node one (docs/thin-film-estimate.md). The estimate's method, e.g.
 // -DOPENPBR_FILM_ESTIMATE_METHOD=OPENPBR_FILM_ESTIMATE_AT_VIEW: SEGMENTS (default) the lobe's segments below; AT_VIEW the
 // film at the view's cosine only, as for a mirror (what most implementations do; the accuracy study's comparison row).
 #define OPENPBR_FILM_ESTIMATE_SEGMENTS 0
@@ -351,11 +360,11 @@ OPENPBR_FUNC float openpbr_ggx_lobe_dielectric_reflection_albedo(float mu, float
 #ifndef OPENPBR_FILM_ESTIMATE_EVANESCENT_SEGMENTS
 #define OPENPBR_FILM_ESTIMATE_EVANESCENT_SEGMENTS 8
 #endif
-// Segments of a lobe without a critical cosine (in air or under a coat less dense than the film
-// and the base) that is neither narrow nor wide, e.g. 2 (the default: two film evaluations, cut
-// at the lobe's mean) or 4 (equal shares: the largest error over the furnace's stacks 0.042 ->
-// 0.011, see the method above, at two more film evaluations: every-lobe prepare about 20,000 ->
-// 32,000 instructions, over issue 31's 20,466 budget).
+// Equal shares of a lobe without a critical cosine (in air or under a coat less dense than the
+// film and the base) that is neither narrow nor wide, cut at table 5's even nodes, e.g. 2 (the
+// default: two film evaluations, three with the tail) or 4 (every-lobe prepare about 5,000
+// instructions more: over issue 31's 20,466 budget). 1, 2, 4 or 8: each share's quartiles must
+// be even nodes.
 #ifndef OPENPBR_FILM_ESTIMATE_PLAIN_SEGMENTS
 #define OPENPBR_FILM_ESTIMATE_PLAIN_SEGMENTS 2
 #endif
@@ -391,14 +400,43 @@ OPENPBR_FUNC float openpbr_ggx_lobe_dielectric_reflection_albedo(float mu, float
 // prepare 18,961 -> 20,295 instructions (20,350 with the partial sliver merge), under issue 31's 20,466; dense-reference
 // cases without a critical cosine low by more than 0.005: 343 -> 249 of 5,490), 0.3 (20,929 instructions, 185 cases), 0.1
 // (every lobe not narrow; 126 cases) or a width above 2 (never).
+// A very wide lobe without a critical cosine, whose interquartile range of c is at least
+// OPENPBR_FILM_ESTIMATE_VERY_WIDE_RANGE, is cut into OPENPBR_FILM_ESTIMATE_VERY_WIDE_SEGMENTS equal
+// shares, e.g. 0.2 and 8 (the defaults: alpha 0.1 below view cos 0.04, 0.2 below about 0.35,
+// 0.4 below about 0.7; with the tail below, dense-reference cases without a critical cosine low
+// by more than 0.005: 36 -> 17 of 3,120 on grids A and B) or a range above 1 (never).
+#ifndef OPENPBR_FILM_ESTIMATE_VERY_WIDE_RANGE
+#define OPENPBR_FILM_ESTIMATE_VERY_WIDE_RANGE 0.2f
+#endif
+#ifndef OPENPBR_FILM_ESTIMATE_VERY_WIDE_SEGMENTS
+#define OPENPBR_FILM_ESTIMATE_VERY_WIDE_SEGMENTS 8
+#endif
+// The upper tail of a lobe without a critical cosine as a segment of its own: the light above
+// table 5's even node OPENPBR_FILM_ESTIMATE_TAIL_NODE of 32, e.g. 28 (the default: the last
+// eighth; the last sixteenth left 31 cases low by more than 0.005 where the eighth left 38, the
+// last 1/32 54), at views whose cosine is below OPENPBR_FILM_ESTIMATE_TAIL_VIEW, e.g. 0.55 (the
+// default: every-lobe prepare 20,295 instructions, within issue 31's 20,466; 0.6 cost 20,509
+// with the tail at its mean), 0 (never) or 2 (always: about 24,500). A multiple of 4 (the tail's quartiles are even nodes).
+#ifndef OPENPBR_FILM_ESTIMATE_TAIL_NODE
+#define OPENPBR_FILM_ESTIMATE_TAIL_NODE 28
+#endif
+#if OPENPBR_FILM_ESTIMATE_TAIL_NODE % 4 != 0 || OPENPBR_FILM_ESTIMATE_TAIL_NODE <= 0 || \
+    OPENPBR_FILM_ESTIMATE_TAIL_NODE >= OPENPBR_LUT_FILM_CORE_SIZE - 1
+#error "OPENPBR_FILM_ESTIMATE_TAIL_NODE must be a multiple of 4 between 0 and 32 (e.g. 28)"
+#endif
+#ifndef OPENPBR_FILM_ESTIMATE_TAIL_VIEW
+#define OPENPBR_FILM_ESTIMATE_TAIL_VIEW 0.55f
+#endif
 #ifndef OPENPBR_FILM_ESTIMATE_WIDE_SEGMENTS
 #define OPENPBR_FILM_ESTIMATE_WIDE_SEGMENTS 4
 #endif
 #ifndef OPENPBR_FILM_ESTIMATE_WIDE_WIDTH
 #define OPENPBR_FILM_ESTIMATE_WIDE_WIDTH 0.4f
 #endif
-#if (OPENPBR_LUT_FILM_CORE_SIZE - 1) % OPENPBR_FILM_ESTIMATE_WIDE_SEGMENTS != 0
-#error "OPENPBR_FILM_ESTIMATE_WIDE_SEGMENTS must divide table 5's probability intervals (32: 2, 4, 8, 16 or 32)"
+#if (OPENPBR_LUT_FILM_CORE_SIZE - 1) % (4 * OPENPBR_FILM_ESTIMATE_PLAIN_SEGMENTS) != 0 || \
+    (OPENPBR_LUT_FILM_CORE_SIZE - 1) % (4 * OPENPBR_FILM_ESTIMATE_WIDE_SEGMENTS) != 0 ||  \
+    (OPENPBR_LUT_FILM_CORE_SIZE - 1) % (4 * OPENPBR_FILM_ESTIMATE_VERY_WIDE_SEGMENTS) != 0
+#error "the equal shares without a critical cosine must be 1, 2, 4 or 8 (each share's quartiles even nodes of 32)"
 #endif
 #if (OPENPBR_LUT_FILM_CORE_SIZE - 1) % OPENPBR_FILM_ESTIMATE_SHARE_SEGMENTS != 0
 #error "OPENPBR_FILM_ESTIMATE_SHARE_SEGMENTS must divide table 5's probability intervals (32: 2, 4, 8, 16 or 32)"
@@ -414,10 +452,10 @@ OPENPBR_FUNC float openpbr_ggx_lobe_dielectric_reflection_albedo(float mu, float
 #define OPENPBR_FILM_ESTIMATE_CRITICAL_CUTS                                                \
     (OPENPBR_FILM_ESTIMATE_EVANESCENT_SEGMENTS + OPENPBR_FILM_ESTIMATE_CRITICAL_SEGMENTS + \
      OPENPBR_FILM_ESTIMATE_SHARE_SEGMENTS)
-#define OPENPBR_FILM_ESTIMATE_MAX_SEGMENTS                                                                            \
-    (OPENPBR_FILM_ESTIMATE_CRITICAL_CUTS > OPENPBR_FILM_ESTIMATE_PLAIN_SEGMENTS + OPENPBR_FILM_ESTIMATE_WIDE_SEGMENTS \
-         ? OPENPBR_FILM_ESTIMATE_CRITICAL_CUTS                                                                        \
-         : OPENPBR_FILM_ESTIMATE_PLAIN_SEGMENTS + OPENPBR_FILM_ESTIMATE_WIDE_SEGMENTS)
+#define OPENPBR_FILM_ESTIMATE_MAX_SEGMENTS                                              \
+    (OPENPBR_FILM_ESTIMATE_CRITICAL_CUTS > OPENPBR_FILM_ESTIMATE_VERY_WIDE_SEGMENTS + 1 \
+         ? OPENPBR_FILM_ESTIMATE_CRITICAL_CUTS                                          \
+         : OPENPBR_FILM_ESTIMATE_VERY_WIDE_SEGMENTS + 1)
 // The step of table 5's even nodes between equal shares (8 of 32 for quarters).
 #define OPENPBR_FILM_ESTIMATE_SHARE_STEP ((OPENPBR_LUT_FILM_CORE_SIZE - 1) / OPENPBR_FILM_ESTIMATE_SHARE_SEGMENTS)
 
@@ -479,6 +517,27 @@ OPENPBR_FUNC vec2 openpbr_film_segment_point(OPENPBR_IN(OpenPBR_FilmLobeTable) t
     return vec2(clamp(at_median ? median : mean, 0.0f, 1.0f), abs(quartile_paths.y - quartile_paths.x) * (1.0f / 1.349f));
 }
 
+// The same for a segment between table 5's even nodes start_node and end_node (of 32, their
+// distance a multiple of 4), start and end their (P, M1): at its mean cosine (the tail at its
+// median), with the spread of the paths of its quartiles, which are even nodes too (node reads).
+OPENPBR_FUNC vec2 openpbr_film_node_segment_point(OPENPBR_IN(OpenPBR_FilmLobeTable) table, int start_node, int end_node,
+                                                  vec2 start, vec2 end, float thickness_um, float film_offset, float n_o)
+{
+    const int quarter = (end_node - start_node) / 4;
+    const float lower = openpbr_film_lobe_even_quantile(table, start_node + quarter);
+    const float upper = openpbr_film_lobe_even_quantile(table, end_node - quarter);
+    const float mean = clamp((end.y - start.y) / max(end.x - start.x, 1e-6f), 0.0f, 1.0f);
+    // The tail (the segment ending at p = 1 that starts at OPENPBR_FILM_ESTIMATE_TAIL_NODE) at its
+    // median: its light is skewed far up in c, where the film's change bends, and its mean
+    // stood for it badly (film 1.2 under n_o 1.15, alpha 0.0134, view cos 0.1: the tail's change
+    // in green -0.150, -0.188 at its mean cosine 0.158, -0.150 at its median).
+    const bool tail = end_node == OPENPBR_LUT_FILM_CORE_SIZE - 1 && start_node == OPENPBR_FILM_ESTIMATE_TAIL_NODE;
+    const float where = tail ? openpbr_film_lobe_even_quantile(table, (start_node + end_node) / 2) : mean;
+    return vec2(where, abs(openpbr_film_optical_path(thickness_um, film_offset, n_o, upper) -
+                           openpbr_film_optical_path(thickness_um, film_offset, n_o, lower)) *
+                           (1.0f / 1.349f));
+}
+
 OPENPBR_FUNC OpenPBR_FresnelPair openpbr_base_film_estimate(OPENPBR_IN(OpenPBR_Fresnel) dielectric, bool dielectric_active,
                                                             OPENPBR_IN(OpenPBR_Fresnel) metal, bool metal_active, vec3 view,
                                                             vec2 alpha)
@@ -519,6 +578,9 @@ OPENPBR_FUNC OpenPBR_FresnelPair openpbr_base_film_estimate(OPENPBR_IN(OpenPBR_F
     // The cosines where the segments end, in increasing order (the last one, 2, above every
     // cosine: the whole lobe), see the method above.
     float cuts[OPENPBR_FILM_ESTIMATE_MAX_SEGMENTS];
+    // Without a critical cosine the cuts are table 5's even nodes j of 32 instead.
+    int cut_nodes[OPENPBR_FILM_ESTIMATE_MAX_SEGMENTS];
+    const bool by_nodes = !at_view && !narrow && lowest <= 0.0f;
     int cut_count = 0;
     if (at_view || narrow)
     {
@@ -527,21 +589,31 @@ OPENPBR_FUNC OpenPBR_FresnelPair openpbr_base_film_estimate(OPENPBR_IN(OpenPBR_F
     }
     else if (lowest <= 0.0f)
     {
-        // No critical cosine: two halves at the lobe's mean cosine (one node read), or more
-        // segments of equal share; a wide lobe's equal shares cut at table 5's nodes.
-        const int segments = wide ? OPENPBR_FILM_ESTIMATE_WIDE_SEGMENTS : OPENPBR_FILM_ESTIMATE_PLAIN_SEGMENTS;
+        // No critical cosine: equal shares of the lobe's light cut at table 5's even nodes (two
+        // halves, a wide lobe's quarters), and at grazing views the upper tail on its own; the
+        // segments' shares, means and quartiles are node reads (no search, no cell model).
+        const bool very_wide = quartiles[2] - quartiles[0] >= OPENPBR_FILM_ESTIMATE_VERY_WIDE_RANGE;
+        const int segments = very_wide ? OPENPBR_FILM_ESTIMATE_VERY_WIDE_SEGMENTS
+                             : wide    ? OPENPBR_FILM_ESTIMATE_WIDE_SEGMENTS
+                                       : OPENPBR_FILM_ESTIMATE_PLAIN_SEGMENTS;
+        const int step = (OPENPBR_LUT_FILM_CORE_SIZE - 1) / segments;
         for (int segment = 1; segment < segments; ++segment)
         {
-            cuts[cut_count] =
-                wide ? openpbr_film_lobe_even_quantile(
-                           table, segment * ((OPENPBR_LUT_FILM_CORE_SIZE - 1) / OPENPBR_FILM_ESTIMATE_WIDE_SEGMENTS))
-                : OPENPBR_FILM_ESTIMATE_PLAIN_SEGMENTS == 2
-                    ? openpbr_film_lobe_total(table).y
-                    : openpbr_film_lobe_quantile(table, float(segment) / float(OPENPBR_FILM_ESTIMATE_PLAIN_SEGMENTS));
+            cut_nodes[cut_count] = segment * step;
             ++cut_count;
         }
-        cuts[cut_count] = 2.0f;
+        if (view.z < OPENPBR_FILM_ESTIMATE_TAIL_VIEW &&
+            (OPENPBR_LUT_FILM_CORE_SIZE - 1) - OPENPBR_FILM_ESTIMATE_TAIL_NODE < step)
+        {
+            cut_nodes[cut_count] = OPENPBR_FILM_ESTIMATE_TAIL_NODE;
+            ++cut_count;
+        }
+        cut_nodes[cut_count] = OPENPBR_LUT_FILM_CORE_SIZE - 1;
         ++cut_count;
+        for (int index = 0; index < cut_count; ++index)
+        {
+            cuts[index] = 2.0f;
+        }
     }
     else
     {
@@ -602,10 +674,14 @@ OPENPBR_FUNC OpenPBR_FresnelPair openpbr_base_film_estimate(OPENPBR_IN(OpenPBR_F
     // One cumulative look-up, one segment point and one film evaluation per segment, each at one
     // call site, both bases in each evaluation.
     vec2 start = vec2(0.0f);
+    int start_node = 0;
     for (int index = 0; index < cut_count; ++index)
     {
         const float cut = cuts[index];
-        vec2 end = at_view || narrow ? vec2(1.0f, view.z) : openpbr_film_lobe_cumulative(table, cut);
+        const int end_node = by_nodes ? cut_nodes[index] : 0;
+        vec2 end = at_view || narrow ? vec2(1.0f, view.z)
+                   : by_nodes        ? openpbr_film_lobe_even_moment(table, end_node)
+                                     : openpbr_film_lobe_cumulative(table, cut);
         end = end.x > start.x ? end : start;
         // A sliver of the lobe's light joins the next segment, except at a critical cosine: a
         // segment of share s below 2 m (m = OPENPBR_FILM_ESTIMATE_MIN_SHARE) keeps the share
@@ -631,12 +707,14 @@ OPENPBR_FUNC OpenPBR_FresnelPair openpbr_base_film_estimate(OPENPBR_IN(OpenPBR_F
             // A narrow lobe at its median with the spread of its quartiles' paths, as
             // openpbr_film_segment_point gives it for the whole lobe, from the quartiles above.
             const vec2 where =
-                at_view  ? vec2(view.z, 0.0f)
-                : narrow ? vec2(quartiles[1], abs(openpbr_film_optical_path(thickness_um, film_offset, n_o, quartiles[2]) -
-                                                  openpbr_film_optical_path(thickness_um, film_offset, n_o, quartiles[0])) *
-                                                  (1.0f / 1.349f))
-                         : openpbr_film_segment_point(table, start, end, lowest > 0.0f && cut <= lowest, thickness_um,
-                                                      film_offset, n_o);
+                at_view    ? vec2(view.z, 0.0f)
+                : narrow   ? vec2(quartiles[1], abs(openpbr_film_optical_path(thickness_um, film_offset, n_o, quartiles[2]) -
+                                                    openpbr_film_optical_path(thickness_um, film_offset, n_o, quartiles[0])) *
+                                                    (1.0f / 1.349f))
+                : by_nodes ? openpbr_film_node_segment_point(table, start_node, end_node, start, end, thickness_um,
+                                                             film_offset, n_o)
+                           : openpbr_film_segment_point(table, start, end, lowest > 0.0f && cut <= lowest, thickness_um,
+                                                        film_offset, n_o);
             const OpenPBR_FresnelPair pair =
                 openpbr_fresnel_evaluate_base_pair_spread(untinted, with_dielectric, metal, metal_filmed, where.x, where.y);
             if (with_dielectric)
@@ -649,6 +727,7 @@ OPENPBR_FUNC OpenPBR_FresnelPair openpbr_base_film_estimate(OPENPBR_IN(OpenPBR_F
             }
         }
         start = end;
+        start_node = end_node;
     }
     OpenPBR_FresnelPair result;
     result.first = dielectric_sum;
