@@ -577,9 +577,10 @@ OPENPBR_FUNC OpenPBR_FresnelPair openpbr_base_film_estimate(OPENPBR_IN(OpenPBR_F
         !at_view && lowest <= 0.0f && quartiles[2] - quartiles[0] >= OPENPBR_FILM_ESTIMATE_WIDE_WIDTH * quartiles[1];
     // The cosines where the segments end, in increasing order (the last one, 2, above every
     // cosine: the whole lobe), see the method above.
+    // Without a critical cosine (by_nodes) they are table 5's even nodes j of 32 instead, held as
+    // floats (j >= 4 > 0 = c*, so the tests on c* below read them as cuts above it): one local
+    // array where a second one for the nodes cost 20 SPIR-V instructions of the full module.
     float cuts[OPENPBR_FILM_ESTIMATE_MAX_SEGMENTS];
-    // Without a critical cosine the cuts are table 5's even nodes j of 32 instead.
-    int cut_nodes[OPENPBR_FILM_ESTIMATE_MAX_SEGMENTS];
     const bool by_nodes = !at_view && !narrow && lowest <= 0.0f;
     int cut_count = 0;
     if (at_view || narrow)
@@ -599,21 +600,17 @@ OPENPBR_FUNC OpenPBR_FresnelPair openpbr_base_film_estimate(OPENPBR_IN(OpenPBR_F
         const int step = (OPENPBR_LUT_FILM_CORE_SIZE - 1) / segments;
         for (int segment = 1; segment < segments; ++segment)
         {
-            cut_nodes[cut_count] = segment * step;
+            cuts[cut_count] = float(segment * step);
             ++cut_count;
         }
         if (view.z < OPENPBR_FILM_ESTIMATE_TAIL_VIEW &&
             (OPENPBR_LUT_FILM_CORE_SIZE - 1) - OPENPBR_FILM_ESTIMATE_TAIL_NODE < step)
         {
-            cut_nodes[cut_count] = OPENPBR_FILM_ESTIMATE_TAIL_NODE;
+            cuts[cut_count] = float(OPENPBR_FILM_ESTIMATE_TAIL_NODE);
             ++cut_count;
         }
-        cut_nodes[cut_count] = OPENPBR_LUT_FILM_CORE_SIZE - 1;
+        cuts[cut_count] = float(OPENPBR_LUT_FILM_CORE_SIZE - 1);
         ++cut_count;
-        for (int index = 0; index < cut_count; ++index)
-        {
-            cuts[index] = 2.0f;
-        }
     }
     else
     {
@@ -678,7 +675,7 @@ OPENPBR_FUNC OpenPBR_FresnelPair openpbr_base_film_estimate(OPENPBR_IN(OpenPBR_F
     for (int index = 0; index < cut_count; ++index)
     {
         const float cut = cuts[index];
-        const int end_node = by_nodes ? cut_nodes[index] : 0;
+        const int end_node = by_nodes ? int(cut) : 0;
         vec2 end = at_view || narrow ? vec2(1.0f, view.z)
                    : by_nodes        ? openpbr_film_lobe_even_moment(table, end_node)
                                      : openpbr_film_lobe_cumulative(table, cut);
