@@ -900,7 +900,7 @@ OPENPBR_FUNC float openpbr_film_lobe_even_quantile(OPENPBR_IN(OpenPBR_FilmLobeTa
 
 // (P, M1) at the even probability j / (OPENPBR_LUT_FILM_CORE_SIZE - 1), 0 <= j <=
 // OPENPBR_LUT_FILM_CORE_SIZE - 1: the light of the lobe below its quantile there, a node read
-// (e.g. j = 16: (1/2, E[c; c <= Q(1/2)])).
+// (e.g. j = 16: (1/2, E[c; c <= Q(1/2)]); j = 32: the whole lobe, (1, E[c])).
 OPENPBR_FUNC vec2 openpbr_film_lobe_even_moment(OPENPBR_IN(OpenPBR_FilmLobeTable) table, int j)
 {
     const int last = OPENPBR_LUT_FILM_CORE_SIZE - 1;
@@ -1054,12 +1054,6 @@ OPENPBR_FUNC float openpbr_film_lobe_quantile(OPENPBR_IN(OpenPBR_FilmLobeTable) 
     }
     const float t = clamp((target - p0) / cell_probability, 0.0f, 1.0f);
     return openpbr_film_lobe_cell_cosine(openpbr_film_lobe_cell(table, low, cell_probability), t);
-}
-
-// The whole lobe: (1, E[c]).
-OPENPBR_FUNC vec2 openpbr_film_lobe_total(OPENPBR_IN(OpenPBR_FilmLobeTable) table)
-{
-    return vec2(1.0f, openpbr_film_lobe_node(table, OPENPBR_LUT_FILM_QUANTILE_SIZE - 1, 1));
 }
 
 OPENPBR_NAMESPACE_END

@@ -484,6 +484,15 @@ OPENPBR_FUNC float openpbr_film_optical_path(float thickness_um, float film_offs
     return 2.0f * thickness_um * openpbr_safe_sqrt(film_offset + openpbr_square(n_o * cosine));
 }
 
+// The spread of the optical path over a segment whose quartile cosines are lower and upper:
+// (path(Q(p_75)) - path(Q(p_25))) / 1.349, a Gaussian's interquartile range.
+OPENPBR_FUNC float openpbr_film_path_spread(float thickness_um, float film_offset, float n_o, float lower, float upper)
+{
+    return abs(openpbr_film_optical_path(thickness_um, film_offset, n_o, upper) -
+               openpbr_film_optical_path(thickness_um, film_offset, n_o, lower)) *
+           (1.0f / 1.349f);
+}
+
 // The segment of the lobe's light between the cumulative bounds start and end (share,
 // E[c; c <= x]): where the film is evaluated, at the segment's median cosine Q(p_mid)
 // (at_median) or at its mean cosine, and the spread of its optical path from its quartiles,
@@ -533,9 +542,7 @@ OPENPBR_FUNC vec2 openpbr_film_node_segment_point(OPENPBR_IN(OpenPBR_FilmLobeTab
     // in green -0.150, -0.188 at its mean cosine 0.158, -0.150 at its median).
     const bool tail = end_node == OPENPBR_LUT_FILM_CORE_SIZE - 1 && start_node == OPENPBR_FILM_ESTIMATE_TAIL_NODE;
     const float where = tail ? openpbr_film_lobe_even_quantile(table, (start_node + end_node) / 2) : mean;
-    return vec2(where, abs(openpbr_film_optical_path(thickness_um, film_offset, n_o, upper) -
-                           openpbr_film_optical_path(thickness_um, film_offset, n_o, lower)) *
-                           (1.0f / 1.349f));
+    return vec2(where, openpbr_film_path_spread(thickness_um, film_offset, n_o, lower, upper));
 }
 
 OPENPBR_FUNC OpenPBR_FresnelPair openpbr_base_film_estimate(OPENPBR_IN(OpenPBR_Fresnel) dielectric, bool dielectric_active,
@@ -703,15 +710,13 @@ OPENPBR_FUNC OpenPBR_FresnelPair openpbr_base_film_estimate(OPENPBR_IN(OpenPBR_F
             // (not "point": an HLSL keyword)
             // A narrow lobe at its median with the spread of its quartiles' paths, as
             // openpbr_film_segment_point gives it for the whole lobe, from the quartiles above.
-            const vec2 where =
-                at_view    ? vec2(view.z, 0.0f)
-                : narrow   ? vec2(quartiles[1], abs(openpbr_film_optical_path(thickness_um, film_offset, n_o, quartiles[2]) -
-                                                    openpbr_film_optical_path(thickness_um, film_offset, n_o, quartiles[0])) *
-                                                    (1.0f / 1.349f))
-                : by_nodes ? openpbr_film_node_segment_point(table, start_node, end_node, start, end, thickness_um,
-                                                             film_offset, n_o)
-                           : openpbr_film_segment_point(table, start, end, lowest > 0.0f && cut <= lowest, thickness_um,
-                                                        film_offset, n_o);
+            const vec2 where = at_view    ? vec2(view.z, 0.0f)
+                               : narrow   ? vec2(quartiles[1], openpbr_film_path_spread(thickness_um, film_offset, n_o,
+                                                                                        quartiles[0], quartiles[2]))
+                               : by_nodes ? openpbr_film_node_segment_point(table, start_node, end_node, start, end,
+                                                                            thickness_um, film_offset, n_o)
+                                          : openpbr_film_segment_point(table, start, end, lowest > 0.0f && cut <= lowest,
+                                                                       thickness_um, film_offset, n_o);
             const OpenPBR_FresnelPair pair =
                 openpbr_fresnel_evaluate_base_pair_spread(untinted, with_dielectric, metal, metal_filmed, where.x, where.y);
             if (with_dielectric)
