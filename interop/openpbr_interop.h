@@ -101,6 +101,15 @@
 #define OPENPBR_GLOBAL_CONSTANT const
 #endif
 
+// Prefix of a loop the driver should keep rolled, e.g. OPENPBR_DONT_UNROLL for (...) { ... }:
+// SPIR-V's DontUnroll loop control from Slang and HLSL ([loop]) and GLSL ([[dont_unroll]]),
+// nvcc's `#pragma unroll 1`; nothing in C++ and Metal, where the compiler decides. Mesa's NIR
+// honours it: a loop of table reads kept rolled is one read site where an unrolled one is one
+// per iteration, and each site adds to llvmpipe's build time (docs/performance.md).
+#ifndef OPENPBR_DONT_UNROLL
+#define OPENPBR_DONT_UNROLL
+#endif
+
 // Every backend must provide these; checked here so a new backend fails loudly.
 #if !defined(OPENPBR_FUNC) || !defined(OPENPBR_IN) || !defined(OPENPBR_INOUT) || !defined(OPENPBR_OUT) || \
     !defined(OPENPBR_UNUSED) || !defined(OPENPBR_NAMESPACE_BEGIN) || !defined(OPENPBR_NAMESPACE_END) ||   \

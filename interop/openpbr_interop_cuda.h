@@ -38,6 +38,11 @@
 // Program-scope constants (e.g. OpenPBR_VacuumIor) live in device memory, initialized at
 // compile time: device code reads them; host code uses the C++ build's copies.
 #define OPENPBR_GLOBAL_CONSTANT __device__ const
+// Loops kept rolled (openpbr_interop.h): nvcc's pragma in the device pass only (the host
+// compiler rejects it, and CPU code keeps its own choice).
+#ifdef __CUDA_ARCH__
+#define OPENPBR_DONT_UNROLL _Pragma("unroll 1")
+#endif
 
 namespace openpbr {
 __host__ __device__ inline float atan2(float y, float x) { return ::atan2f(y, x); }

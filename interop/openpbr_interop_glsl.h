@@ -22,6 +22,12 @@
 // Program-scope constants, e.g. OpenPBR_VacuumIor.
 #define OPENPBR_GLOBAL_CONSTANT const
 
+// Loops kept rolled (openpbr_interop.h), where the compiler has the extension (glslang does).
+#ifdef GL_EXT_control_flow_attributes
+#extension GL_EXT_control_flow_attributes : enable
+#define OPENPBR_DONT_UNROLL [[dont_unroll]]
+#endif
+
 float atan2(float y, float x) { return atan(y, x); }
 
 // HLSL's saturate, which the dialect uses; a shader that defines its own sets

@@ -21,6 +21,7 @@
 
 // Program-scope constants, e.g. OpenPBR_VacuumIor (saturate is built in).
 #define OPENPBR_GLOBAL_CONSTANT static const
+#define OPENPBR_DONT_UNROLL [loop]
 
 #define OPENPBR_NAMESPACE_BEGIN
 #define OPENPBR_NAMESPACE_END

@@ -162,9 +162,6 @@
 #define OPENPBR_LUT_FILM_CORE_SIZE 33
 #define OPENPBR_LUT_FILM_TAIL_NODES 4
 #define OPENPBR_LUT_FILM_QUANTILE_SIZE (OPENPBR_LUT_FILM_CORE_SIZE + 2 * OPENPBR_LUT_FILM_TAIL_NODES)
-// Bisection steps over the cells between the even nodes 1 and OPENPBR_LUT_FILM_CORE_SIZE - 2
-// (the tails' cells take fewer): 2^steps = OPENPBR_LUT_FILM_CORE_SIZE - 1, e.g. 5 for 33.
-#define OPENPBR_LUT_FILM_SEARCH_STEPS 5
 #define OPENPBR_LUT_FILM_SIZE 32
 #define OPENPBR_LUT_FILM_CHANNEL_COUNT 2
 
@@ -816,6 +813,21 @@ OPENPBR_FUNC float openpbr_ggx_albedo_anisotropic(float mu, float roughness, flo
 
 // ---- Table 5: the microfacet cosines of a lobe's reflected light (thin film) ----------------
 
+// How a node's four bilinear corners are read, e.g. 1 (the default): in a loop kept rolled
+// (OPENPBR_DONT_UNROLL), one table read site per node read; llvmpipe's build of the full
+// conformance module takes 2.15 G fewer instructions (19.6 -> 17.5 G, valgrind; about 11 %,
+// docs/thin-film-estimate.md). Or 0: the loop left to the compiler, which unrolls it (four
+// loads in flight at once, a shorter prepare of filmed materials on GPUs whose table reads
+// wait on memory; the build as before). Outputs are the same either way.
+#ifndef OPENPBR_ROLLED_FILM_TABLE_READS
+#define OPENPBR_ROLLED_FILM_TABLE_READS 1
+#endif
+#if OPENPBR_ROLLED_FILM_TABLE_READS
+#define OPENPBR_FILM_TABLE_READ_LOOP OPENPBR_DONT_UNROLL
+#else
+#define OPENPBR_FILM_TABLE_READ_LOOP
+#endif
+
 // The four (view, roughness) nodes around a lobe and their bilinear weights; mu the view cosine,
 // alpha the lobe's (isotropic or root-mean-square) GGX alpha.
 struct OpenPBR_FilmLobeTable
@@ -860,15 +872,21 @@ OPENPBR_FUNC float openpbr_film_table_node(int p, int m, int r, int channel)
 // A channel at probability node p, interpolated bilinearly between the lobe's four nodes
 // (quantiles of neighbouring lobes blend as the lobes' cosines shift: the quantile function of
 // the blend of two distributions' displacement).
+// The four corners are read in one loop, at one read site: the film estimate reads nodes at
+// about twenty places, each inlined, and every table read site lengthens llvmpipe's build of
+// the module (see OPENPBR_ROLLED_FILM_TABLE_READS).
 OPENPBR_FUNC float openpbr_film_lobe_node(OPENPBR_IN(OpenPBR_FilmLobeTable) table, int p, int channel)
 {
-    const int m = table.mu_index;
-    const int r = table.r_index;
-    const float low_r =
-        mix(openpbr_film_table_node(p, m, r, channel), openpbr_film_table_node(p, m + 1, r, channel), table.mu_weight);
-    const float high_r = mix(openpbr_film_table_node(p, m, r + 1, channel),
-                             openpbr_film_table_node(p, m + 1, r + 1, channel), table.mu_weight);
-    return mix(low_r, high_r, table.r_weight);
+    // (m, r), (m + 1, r), (m, r + 1), (m + 1, r + 1) in x .. w.
+    vec4 corners = vec4(0.0f);
+    OPENPBR_FILM_TABLE_READ_LOOP
+    for (int corner = 0; corner < 4; ++corner)
+    {
+        const float value =
+            openpbr_film_table_node(p, table.mu_index + (corner & 1), table.r_index + (corner >> 1), channel);
+        corners = openpbr_with_channel(corners, corner, value);
+    }
+    return mix(mix(corners.x, corners.y, table.mu_weight), mix(corners.z, corners.w, table.mu_weight), table.r_weight);
 }
 
 // The probability p of table 5's node (OPENPBR_LUT_FILM_QUANTILE_SIZE nodes, see the sizes
@@ -922,22 +940,32 @@ OPENPBR_FUNC vec2 openpbr_film_lobe_even_moment(OPENPBR_IN(OpenPBR_FilmLobeTable
 // [1/64, 1/2] (k at most 63).
 struct OpenPBR_FilmLobeCell
 {
-    float low;       // q0, the cosine at the cell's start
-    float width;     // q1 - q0
-    float exponent;  // k
-    float mean;      // the model's mean cosine in the cell (the tabulated one, within the clamp of g)
-    bool upper;      // skewed towards q1 (the mirrored form)
+    float low;           // q0, the cosine at the cell's start
+    float width;         // q1 - q0
+    float exponent;      // k
+    float mean;          // the model's mean cosine in the cell (the tabulated one, within the clamp of g)
+    bool upper;          // skewed towards q1 (the mirrored form)
+    float moment;        // M1 at the cell's start
+    float moment_width;  // M1 at its end minus M1 at its start (the cell's light times its mean)
 };
 
 // The cell between nodes index and index + 1, cell_probability = p_index+1 - p_index.
 OPENPBR_FUNC OpenPBR_FilmLobeCell openpbr_film_lobe_cell(OPENPBR_IN(OpenPBR_FilmLobeTable) table, int index,
                                                          float cell_probability)
 {
+    // Q and M1 at the cell's two nodes, read at one site (OPENPBR_ROLLED_FILM_TABLE_READS).
+    vec4 nodes = vec4(0.0f);
+    OPENPBR_FILM_TABLE_READ_LOOP
+    for (int read = 0; read < 4; ++read)
+    {
+        nodes = openpbr_with_channel(nodes, read, openpbr_film_lobe_node(table, index + (read & 1), read >> 1));
+    }
     OpenPBR_FilmLobeCell cell;
-    cell.low = openpbr_film_lobe_node(table, index, 0);
-    cell.width = max(openpbr_film_lobe_node(table, index + 1, 0) - cell.low, 0.0f);
-    const float mean =
-        (openpbr_film_lobe_node(table, index + 1, 1) - openpbr_film_lobe_node(table, index, 1)) / cell_probability;
+    cell.low = nodes.x;
+    cell.width = max(nodes.y - cell.low, 0.0f);
+    cell.moment = nodes.z;
+    cell.moment_width = nodes.w - cell.moment;
+    const float mean = cell.moment_width / cell_probability;
     const float position = cell.width > 1e-7f ? clamp((mean - cell.low) / cell.width, 0.0f, 1.0f) : 0.5f;
     cell.upper = position > 0.5f;
     const float near = clamp(cell.upper ? 1.0f - position : position, 1.0f / 64.0f, 0.5f);
@@ -952,28 +980,21 @@ OPENPBR_FUNC vec2 openpbr_film_lobe_cell_below(OPENPBR_IN(OpenPBR_FilmLobeCell) 
 {
     const float s = cell.width > 0.0f ? clamp((x - cell.low) / cell.width, 0.0f, 1.0f) : 1.0f;
     const float k = cell.exponent;
-    float t = 0.0f;
-    float integral = 0.0f;
-    if (cell.upper)
-    {
-        // c = q1 - w (1 - t)^k: t = 1 - (1 - s)^(1/k), and (1 - t)^(k + 1) = (1 - t)(1 - s).
-        const float rest = pow(1.0f - s, 1.0f / k);
-        t = 1.0f - rest;
-        integral = (cell.low + cell.width) * t - cell.width * (1.0f - rest * (1.0f - s)) / (k + 1.0f);
-    }
-    else
-    {
-        t = pow(s, 1.0f / k);
-        integral = cell.low * t + cell.width * t * s / (k + 1.0f);
-    }
+    // Lower form: c = q0 + w t^k, so t = s^(1/k). Upper form: c = q1 - w (1 - t)^k, so
+    // t = 1 - (1 - s)^(1/k), and (1 - t)^(k + 1) = (1 - t)(1 - s). One pow for both forms
+    // (each pow site is a polynomial in llvmpipe's build of the module).
+    const float root = pow(cell.upper ? 1.0f - s : s, 1.0f / k);
+    const float t = cell.upper ? 1.0f - root : root;
+    const float integral = cell.upper ? (cell.low + cell.width) * t - cell.width * (1.0f - root * (1.0f - s)) / (k + 1.0f)
+                                      : cell.low * t + cell.width * t * s / (k + 1.0f);
     return vec2(t, cell.mean > 0.0f ? clamp(integral / cell.mean, 0.0f, 1.0f) : t);
 }
 
 // The cosine at fraction t of the cell's light.
 OPENPBR_FUNC float openpbr_film_lobe_cell_cosine(OPENPBR_IN(OpenPBR_FilmLobeCell) cell, float t)
 {
-    return cell.upper ? cell.low + cell.width * (1.0f - pow(max(1.0f - t, 0.0f), cell.exponent))
-                      : cell.low + cell.width * pow(max(t, 0.0f), cell.exponent);
+    const float power = pow(max(cell.upper ? 1.0f - t : t, 0.0f), cell.exponent);
+    return cell.low + cell.width * (cell.upper ? 1.0f - power : power);
 }
 
 // The light of the lobe whose microfacet cosine is at most x: (P, M1) = (its fraction,
@@ -981,32 +1002,23 @@ OPENPBR_FUNC float openpbr_film_lobe_cell_cosine(OPENPBR_IN(OpenPBR_FilmLobeCell
 // model above (exact at the nodes, never decreasing in x).
 OPENPBR_FUNC vec2 openpbr_film_lobe_cumulative(OPENPBR_IN(OpenPBR_FilmLobeTable) table, float x)
 {
-    // The cells between the first and the last even node inside the ends (p = 1/32 and 31/32),
-    // or one tail's: as many node reads as a bisection over the even nodes alone.
     const int last = OPENPBR_LUT_FILM_QUANTILE_SIZE - 1;
-    const int first_even = openpbr_film_lobe_even_node(1);
-    const int last_even = openpbr_film_lobe_even_node(OPENPBR_LUT_FILM_CORE_SIZE - 2);
-    int low = first_even;
-    int high = last_even;
-    if (x < openpbr_film_lobe_node(table, first_even, 0))
+    if (x <= openpbr_film_lobe_node(table, 0, 0))
     {
-        if (x <= openpbr_film_lobe_node(table, 0, 0))
-        {
-            return vec2(0.0f);
-        }
-        low = 0;
-        high = first_even;
+        return vec2(0.0f);
     }
-    else if (x >= openpbr_film_lobe_node(table, last_even, 0))
+    if (x >= openpbr_film_lobe_node(table, last, 0))
     {
-        if (x >= openpbr_film_lobe_node(table, last, 0))
-        {
-            return vec2(1.0f, openpbr_film_lobe_node(table, last, 1));
-        }
-        low = last_even;
-        high = last;
+        return vec2(1.0f, openpbr_film_lobe_node(table, last, 1));
     }
-    for (int step = 0; step < OPENPBR_LUT_FILM_SEARCH_STEPS && high - low > 1; ++step)
+    // Bisection over all the nodes, Q(p_low) <= x < Q(p_high): the last node at or below x, the
+    // same cell as any search finds, since Q never decreases. The loop ends on the data, not on
+    // a count: a counted loop is unrolled by drivers into one table read per step (llvmpipe's
+    // build of the module: the bisection over the even nodes with the tails tested first took
+    // 0.48 G more instructions to compile, docs/thin-film-estimate.md).
+    int low = 0;
+    int high = last;
+    while (high - low > 1)
     {
         const int middle = (low + high) / 2;
         if (openpbr_film_lobe_node(table, middle, 0) <= x)
@@ -1022,8 +1034,7 @@ OPENPBR_FUNC vec2 openpbr_film_lobe_cumulative(OPENPBR_IN(OpenPBR_FilmLobeTable)
     const float cell_probability = openpbr_film_lobe_probability(low + 1) - p0;
     const OpenPBR_FilmLobeCell cell = openpbr_film_lobe_cell(table, low, cell_probability);
     const vec2 below = openpbr_film_lobe_cell_below(cell, x);
-    const float m1 = openpbr_film_lobe_node(table, low, 1);
-    return vec2(p0 + cell_probability * below.x, m1 + (openpbr_film_lobe_node(table, low + 1, 1) - m1) * below.y);
+    return vec2(p0 + cell_probability * below.x, cell.moment + cell.moment_width * below.y);
 }
 
 // The cosine below which a fraction p of the lobe's light lies, Q(p), with the cell model above

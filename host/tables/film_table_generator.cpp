@@ -22,9 +22,6 @@
 namespace openpbr::host {
 
 static_assert(OPENPBR_LUT_FILM_OFFSET == OPENPBR_LUT_COMPENSATION_COUNT, "table 5 follows the compensation tables");
-static_assert((1 << OPENPBR_LUT_FILM_SEARCH_STEPS) == OPENPBR_LUT_FILM_CORE_SIZE - 1 &&
-                  (1 << OPENPBR_LUT_FILM_SEARCH_STEPS) >= OPENPBR_LUT_FILM_TAIL_NODES + 1,
-              "the look-up's bisection needs 2^steps cells between the even nodes, and as many for a tail");
 
 std::vector<double> film_lobe_probabilities()
 {

@@ -533,15 +533,23 @@ OPENPBR_FUNC vec2 openpbr_film_node_segment_point(OPENPBR_IN(OpenPBR_FilmLobeTab
                                                   vec2 start, vec2 end, float thickness_um, float film_offset, float n_o)
 {
     const int quarter = (end_node - start_node) / 4;
-    const float lower = openpbr_film_lobe_even_quantile(table, start_node + quarter);
-    const float upper = openpbr_film_lobe_even_quantile(table, end_node - quarter);
+    // The lower and upper quartiles and the median, read at one site.
+    vec4 quantiles = vec4(0.0f);
+    OPENPBR_FILM_TABLE_READ_LOOP
+    for (int read = 0; read < 3; ++read)
+    {
+        const int node = read == 0 ? start_node + quarter : (read == 1 ? end_node - quarter : (start_node + end_node) / 2);
+        quantiles = openpbr_with_channel(quantiles, read, openpbr_film_lobe_even_quantile(table, node));
+    }
+    const float lower = quantiles.x;
+    const float upper = quantiles.y;
     const float mean = clamp((end.y - start.y) / max(end.x - start.x, 1e-6f), 0.0f, 1.0f);
     // The tail (the segment ending at p = 1 that starts at OPENPBR_FILM_ESTIMATE_TAIL_NODE) at its
     // median: its light is skewed far up in c, where the film's change bends, and its mean
     // stood for it badly (film 1.2 under n_o 1.15, alpha 0.0134, view cos 0.1: the tail's change
     // in green -0.150, -0.188 at its mean cosine 0.158, -0.150 at its median).
     const bool tail = end_node == OPENPBR_LUT_FILM_CORE_SIZE - 1 && start_node == OPENPBR_FILM_ESTIMATE_TAIL_NODE;
-    const float where = tail ? openpbr_film_lobe_even_quantile(table, (start_node + end_node) / 2) : mean;
+    const float where = tail ? quantiles.z : mean;
     return vec2(where, openpbr_film_path_spread(thickness_um, film_offset, n_o, lower, upper));
 }
 
@@ -572,6 +580,7 @@ OPENPBR_FUNC OpenPBR_FresnelPair openpbr_base_film_estimate(OPENPBR_IN(OpenPBR_F
     // without a critical cosine. Table 5's even probability nodes include them (p = 1/4 at even
     // node 8 of 32), so they are node reads, without the cell model of openpbr_film_lobe_quantile.
     float quartiles[3];
+    OPENPBR_FILM_TABLE_READ_LOOP
     for (int quartile = 0; quartile < 3; ++quartile)
     {
         quartiles[quartile] =
@@ -644,9 +653,10 @@ OPENPBR_FUNC OpenPBR_FresnelPair openpbr_base_film_estimate(OPENPBR_IN(OpenPBR_F
         // unrolled by drivers into thresholds x bounds copies of its body).
         int next_threshold = 0;
         float threshold = openpbr_film_estimate_threshold(lowest, 0);
-        int next_share = 1;
-        float share_bound = openpbr_film_lobe_even_quantile(table, OPENPBR_FILM_ESTIMATE_SHARE_STEP);
-        for (int step = 0; step < OPENPBR_FILM_ESTIMATE_CRITICAL_SEGMENTS + OPENPBR_FILM_ESTIMATE_SHARE_SEGMENTS - 2; ++step)
+        // The first step reads the first bound (below every cut, -1 is no cut): one read site.
+        int next_share = 0;
+        float share_bound = -1.0f;
+        for (;;)
         {
             // Bounds at or above 1 (past every threshold) are not cuts.
             if (next_share < OPENPBR_FILM_ESTIMATE_SHARE_SEGMENTS && share_bound < threshold)
@@ -669,6 +679,10 @@ OPENPBR_FUNC OpenPBR_FresnelPair openpbr_base_film_estimate(OPENPBR_IN(OpenPBR_F
                 threshold = next_threshold < OPENPBR_FILM_ESTIMATE_CRITICAL_SEGMENTS - 1
                                 ? openpbr_film_estimate_threshold(lowest, next_threshold)
                                 : 1.0f;
+            }
+            else
+            {
+                break;
             }
         }
         cuts[cut_count] = 2.0f;

@@ -147,6 +147,14 @@ OPENPBR_FUNC vec3 openpbr_with_channel(vec3 v, int channel, float value)
     return vec3(channel == 0 ? value : v.x, channel == 1 ? value : v.y, channel == 2 ? value : v.z);
 }
 
+// The same for a vec4 (components 0 .. 3): what a loop of table reads kept rolled gathers its
+// reads into (openpbr_film_lobe_node).
+OPENPBR_FUNC vec4 openpbr_with_channel(vec4 v, int channel, float value)
+{
+    return vec4(channel == 0 ? value : v.x, channel == 1 ? value : v.y, channel == 2 ? value : v.z,
+                channel == 3 ? value : v.w);
+}
+
 // Luminance with Rec.709 / linear sRGB primaries; used only for sampling decisions, never
 // for values, so the exact primaries do not affect the result's expectation.
 OPENPBR_FUNC float openpbr_luminance(vec3 c) { return dot(c, vec3(0.2126f, 0.7152f, 0.0722f)); }

@@ -73,6 +73,15 @@ TEST(ChannelHelpers, ReadAndReplaceOneChannel)
         EXPECT_EQ(openpbr::openpbr_channel_mask(channel)[channel], 1.0f);
         EXPECT_EQ(glm::dot(openpbr::openpbr_channel_mask(channel), glm::vec3(1.0f)), 1.0f);
     }
+    const glm::vec4 four(1.0f, 2.0f, 3.0f, 4.0f);
+    for (int channel = 0; channel < 4; ++channel)
+    {
+        const glm::vec4 replaced = openpbr::openpbr_with_channel(four, channel, infinity);
+        for (int other = 0; other < 4; ++other)
+        {
+            EXPECT_EQ(replaced[other], other == channel ? infinity : four[other]) << channel << " " << other;
+        }
+    }
 }
 
 }  // namespace
