@@ -5,7 +5,7 @@
 # within one run on the 2-core CI machine, docs/thin-film-estimate.md). llvmpipe compiles at the
 # first dispatch, so the count of the threads lavapipe starts is the build plus 64 queries.
 # Compare kernels with it, e.g. a commit's kernel against today's: the wall time of the build
-# scales with it (513ea8a's kernel: 15.39 G here, 2.57-2.70 s on the 2026-11-27 machine).
+# scales with it (513ea8a's kernel: 15.34 G here, 2.57-2.70 s on the 2026-11-27 machine).
 #
 # Usage: benchmarks/llvmpipe_build_instructions.sh [BUILD_DIR] [KERNEL_DIR ...]
 #   e.g. benchmarks/llvmpipe_build_instructions.sh build build/kernels /tmp/old_kernels
