@@ -24,7 +24,7 @@
 #   step_run NAME KIND COMMAND...   runs COMMAND, records its wall time, the CPU time (user + sys)
 #                                   of everything it ran, and its exit status, and returns that
 #                                   status. KIND is "install" for package installs (apt-get,
-#                                   npm ci), which the time targets leave out, "step"
+#                                   npm ci), which the CI time budget leaves out, "step"
 #                                   otherwise.
 # e.g. step_run ctest step ctest --test-dir build --parallel 2
 

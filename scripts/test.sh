@@ -5,7 +5,8 @@
 # docs/stability.md: the BSDF fuzzer for a bounded time (scripts/ci_fuzz.sh, 60 s) and the CPU
 # unit tests under ASan + UBSan (scripts/ci_sanitizers.sh) and in Clang's Release build
 # (scripts/ci_clang_release.sh), and the format check of the C, C++ and CUDA sources against
-# .clang-format (scripts/format-check.sh). Every step runs even when an earlier one fails; the
+# .clang-format (scripts/format-check.sh) with the word check of tracked text
+# (scripts/check-words.sh: no names of work rounds, no tracker numbers). Every step runs even when an earlier one fails; the
 # script fails if any did. OPENPBR_SKIP_CONSUMERS=1, OPENPBR_SKIP_SANITIZERS=1,
 # OPENPBR_SKIP_CLANG_RELEASE=1, OPENPBR_SKIP_FUZZ=1 and OPENPBR_SKIP_FORMAT=1 leave those steps
 # out, e.g. for a quick local run. Prints a table of each step's wall and CPU time at the end
@@ -53,6 +54,7 @@ done
 rm -rf "$side_step_logs"
 if [[ "${OPENPBR_SKIP_FORMAT:-0}" != 1 ]]; then
   step_run "format-check" step "$repo_root/scripts/format-check.sh" || failed+=(format-check)
+  step_run "check-words" step "$repo_root/scripts/check-words.sh" || failed+=(check-words)
 fi
 if ((${#failed[@]})); then
   # A fuzz finding again at the end, where a truncated CI log still shows it.

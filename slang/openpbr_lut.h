@@ -67,7 +67,7 @@
 //          0.02-0.5, views within 0.15 of mu_c); with the warp 0.044 and 0.13, and at most 0.025
 //          and 0.042 where mu_c >= 0.007 (the 0.13 at mu_c = 0.002, eta 1 - 2e-6, at mu = 8e-4);
 //          mean error over the study 0.041 -> 0.0024 (with L = 2 on both halves; docs/stability.md
-//          "Critical angle below relative IOR 1 (session 10)"). K = OPENPBR_LUT_STEP_WIDTH_SCALE;
+//          "Critical angle below relative IOR 1"). K = OPENPBR_LUT_STEP_WIDTH_SCALE;
 //          L = OPENPBR_LUT_STEP_LINEAR_WEIGHT_ABOVE past mu_c and
 //          OPENPBR_LUT_STEP_LINEAR_WEIGHT_BELOW before it (longer cells at grazing views).
 // The two nodes at eta = 1 hold the one-sided limits (s = s_0, eta = 1 -/+ 2^-20): at grazing

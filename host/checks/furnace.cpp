@@ -429,8 +429,8 @@ const std::vector<FurnaceKnownLimit>& furnace_known_limits()
     // 1.0029 / 1.0038 / 1.0039 / 1.0046 / 1.0035 now, within the sweep's band.)
     static const std::vector<FurnaceKnownLimit> limits = {
         // Under a coat of weight 0.5 (outside IOR 1.3 over the film: no critical cosine) at cos
-        // 0.1: 1.0044 / 0.9999 / 0.9937 +- 0.0004 (262144 samples, the lobe in quarters since
-        // session 20; 1.0077 / 1.0024 / 0.9917 with two halves, 1.0096 before). At cos 0.02 and
+        // 0.1: 1.0044 / 0.9999 / 0.9937 +- 0.0004 (262144 samples, the lobe in quarters;
+        // 1.0077 / 1.0024 / 0.9917 with the lobe in two halves). At cos 0.02 and
         // 0.001 it is within the furnace's bounds now (1.0015 / 0.9964, 1.0008 / 0.9979; 1.0071 and
         // 1.0069 with two halves).
         {"white_diffuse_thin_film_under_half_coat", 0.1f, 0.990, 1.008},
@@ -460,12 +460,12 @@ const std::vector<FurnaceKnownLimit>& furnace_known_limits()
         {"sweep_critical_eta0p95_r0p05_mu_c_plus0p02", any_view_cosine, 0.982, 1.005},   // 0.9853 +- 0.0003
         {"sweep_critical_eta0p99_r0p05_mu_c_plus0p005", any_view_cosine, 0.980, 1.005},  // 0.9858 +- 0.0006
         {"sweep_critical_eta0p99_r0p05_mu_c_plus0p02", any_view_cosine, 0.981, 1.005},   // 0.9852 +- 0.0003
-        // The filmed grid (film_furnace_configs) holds no known limit since table 5's tail nodes
-        // (session 22, docs/thin-film-estimate.md): its largest gain until then, a near-mirror lobe
-        // just past the film's critical cosine (film 1.4 of 1.5 um under a half coat of IOR 1.8 in
-        // water: outside IOR 1.565, critical cosine 0.447) at cos 0.5, held here at [0.99, 1.017]
-        // with 1.0125 / 0.9994 / 0.9999 +- 0.0004 at 2^20 samples, is 1.0000 / 0.9992 / 1.0026 +-
-        // 0.0004 now and stays in the tests' subset under the grid's own band.
+        // The filmed grid (film_furnace_configs) holds no known limit: with table 5's tail nodes
+        // (docs/thin-film-estimate.md) its hardest row, a near-mirror lobe just past the film's
+        // critical cosine (film 1.4 of 1.5 um under a half coat of IOR 1.8 in water: outside IOR
+        // 1.565, critical cosine 0.447) at cos 0.5, reads 1.0000 / 0.9992 / 1.0026 +- 0.0004 at
+        // 2^20 samples (1.0125 / 0.9994 / 0.9999 without the tail nodes) and stays in the tests'
+        // subset under the grid's own band.
     };
     return limits;
 }

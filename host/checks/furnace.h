@@ -58,7 +58,7 @@ struct FurnaceConfig
 // over a white base, thin-walled glass and IOR 3, at several roughnesses.
 const std::vector<FurnaceConfig>& white_furnace_configs();
 
-// The filmed white furnace (issue 31's grid): a thin film of IOR 1.2, 1.4 or 2 and thickness
+// The filmed white furnace (the film-under-a-coat grid): a thin film of IOR 1.2, 1.4 or 2 and thickness
 // 0.1-1.5 um over a white diffuse base, a white metal and white glass, under no coat or a white
 // coat of weight 0.5 or 1 and IOR 1.3, 1.6 or 1.8, coat and specular roughness 0.1, 0.4 or 0.8,
 // in air and in water (exterior IOR 1.33), at view cos 1, 0.5 and 0.1: 2268 configurations,

@@ -134,14 +134,14 @@ openpbr_accuracy_variant(vndf_bounded KNOB "vndf sampling" SETTING "bounded (Eto
 openpbr_accuracy_variant(thin_film_fast KNOB "thin film" SETTING "fast thin film approximation"
   DEFINES OPENPBR_THIN_FILM_MODEL=OPENPBR_THIN_FILM_MODEL_FAST)
 # The thin film's albedo estimate (openpbr_base_film_estimate): the film at the view only (what
-# most implementations do), and session 19's cuts (two halves for every lobe without a critical
-# cosine that is not narrow, equal shares since session 23, no tail on its own; past one the
+# most implementations do), and coarse cuts (two halves for every lobe without a critical
+# cosine that is not narrow, no very wide lobe in eighths, no tail on its own; past one the
 # quartiles, 12 thresholds in w and 4 evanescent segments, no sliver merged;
 # docs/thin-film-estimate.md). CPU only: the estimate runs in
 # prepare, and its furnace row is a CPU measurement.
 openpbr_accuracy_variant(film_estimate_at_view KNOB "film estimate" SETTING "film at the view only" CPU_ONLY
   DEFINES OPENPBR_FILM_ESTIMATE_METHOD=OPENPBR_FILM_ESTIMATE_AT_VIEW)
-openpbr_accuracy_variant(film_estimate_session19 KNOB "film estimate" SETTING "session 19's cuts (quartiles past a critical cosine)"
+openpbr_accuracy_variant(film_estimate_quartile_cuts KNOB "film estimate" SETTING "coarse cuts (halves; quartiles past a critical cosine)"
   CPU_ONLY DEFINES OPENPBR_FILM_ESTIMATE_CRITICAL_SEGMENTS=12 OPENPBR_FILM_ESTIMATE_EVANESCENT_SEGMENTS=4
   OPENPBR_FILM_ESTIMATE_SHARE_SEGMENTS=4 OPENPBR_FILM_ESTIMATE_WIDE_WIDTH=3.0f OPENPBR_FILM_ESTIMATE_MIN_SHARE=0.0f
   OPENPBR_FILM_ESTIMATE_VERY_WIDE_RANGE=3.0f OPENPBR_FILM_ESTIMATE_TAIL_VIEW=0.0f)

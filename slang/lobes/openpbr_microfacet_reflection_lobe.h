@@ -313,8 +313,8 @@ OPENPBR_FUNC float openpbr_ggx_lobe_dielectric_reflection_albedo(float mu, float
 //    microfacets where the film's amplitudes bend), is OPENPBR_FILM_ESTIMATE_WIDE_SEGMENTS
 //    quarters, and one whose interquartile range is at least
 //    OPENPBR_FILM_ESTIMATE_VERY_WIDE_RANGE in c itself (alpha 0.1 below view cos 0.04, 0.2
-//    below about 0.35, 0.4 below about 0.7) OPENPBR_FILM_ESTIMATE_VERY_WIDE_SEGMENTS eighths. Session 23
-//    (docs/thin-film-estimate.md "The upper tail on its own"): a GGX lobe's long upper tail (at view cos 0.1 and alpha 0.013
+//    below about 0.35, 0.4 below about 0.7) OPENPBR_FILM_ESTIMATE_VERY_WIDE_SEGMENTS eighths.
+//    The upper tail (docs/thin-film-estimate.md "The upper tail on its own"): a GGX lobe's long upper tail (at view cos 0.1 and alpha 0.013
 //    the middle three quarters of its light lie between c = 0.089 and 0.110, the last eighth
 //    above 0.120, reaching far up) pulled the upper half's mean to where the film's change bends, the largest remaining
 //    errors of the dense reference without a critical cosine (0.034 high, 0.020 low); the last eighth as a segment of its
@@ -363,7 +363,7 @@ OPENPBR_FUNC float openpbr_ggx_lobe_dielectric_reflection_albedo(float mu, float
 // Equal shares of a lobe without a critical cosine (in air or under a coat less dense than the
 // film and the base) that is neither narrow nor wide, cut at table 5's even nodes, e.g. 2 (the
 // default: two film evaluations, three with the tail) or 4 (every-lobe prepare about 5,000
-// instructions more: over issue 31's 20,466 budget). 1, 2, 4 or 8: each share's quartiles must
+// instructions more). 1, 2, 4 or 8: each share's quartiles must
 // be even nodes.
 #ifndef OPENPBR_FILM_ESTIMATE_PLAIN_SEGMENTS
 #define OPENPBR_FILM_ESTIMATE_PLAIN_SEGMENTS 2
@@ -397,7 +397,7 @@ OPENPBR_FUNC float openpbr_ggx_lobe_dielectric_reflection_albedo(float mu, float
 // A wide lobe without a critical cosine, whose interquartile range of c is at least
 // OPENPBR_FILM_ESTIMATE_WIDE_WIDTH times its median, is cut into OPENPBR_FILM_ESTIMATE_WIDE_SEGMENTS
 // equal shares at table 5's nodes instead of two halves, e.g. 4 and 0.4 (the defaults: every-lobe
-// prepare 18,961 -> 20,295 instructions (20,350 with the partial sliver merge), under issue 31's 20,466; dense-reference
+// prepare 18,961 -> 20,295 instructions (20,350 with the partial sliver merge); dense-reference
 // cases without a critical cosine low by more than 0.005: 343 -> 249 of 5,490), 0.3 (20,929 instructions, 185 cases), 0.1
 // (every lobe not narrow; 126 cases) or a width above 2 (never).
 // A very wide lobe without a critical cosine, whose interquartile range of c is at least
@@ -415,7 +415,7 @@ OPENPBR_FUNC float openpbr_ggx_lobe_dielectric_reflection_albedo(float mu, float
 // table 5's even node OPENPBR_FILM_ESTIMATE_TAIL_NODE of 32, e.g. 28 (the default: the last
 // eighth; the last sixteenth left 31 cases low by more than 0.005 where the eighth left 38, the
 // last 1/32 54), at views whose cosine is below OPENPBR_FILM_ESTIMATE_TAIL_VIEW, e.g. 0.55 (the
-// default: every-lobe prepare 20,295 instructions, within issue 31's 20,466; 0.6 cost 20,509
+// default: every-lobe prepare 20,295 instructions; 0.6 cost 20,509
 // with the tail at its mean), 0 (never) or 2 (always: about 24,500). A multiple of 4 (the tail's quartiles are even nodes).
 #ifndef OPENPBR_FILM_ESTIMATE_TAIL_NODE
 #define OPENPBR_FILM_ESTIMATE_TAIL_NODE 28

@@ -145,24 +145,22 @@ struct EstimateCase
 
 // Bounds per regime: the largest error of these cases (films of 0.25 and 1 um, roughness 0.1-0.9,
 // view cos 1-0.02, against the 96 x 96-node average), dielectric's change / metal's factor,
-// measured 2026-11-28 (session 20) with a wide lobe without critical cosine in four equal shares,
-// eight Chebyshev segments of the evanescent film, 16 segments and the lobe's sixteenths as cuts
-// past a critical cosine, slivers under 1 % of the light merged into the next segment and those
-// under 2 % in part, and without a critical cosine equal shares with the upper tail on its own
-// at grazing views (at its median) and eighths for very wide lobes (session 23; slang/lobes/
-// openpbr_microfacet_reflection_lobe.h), rounded up: in air 0.0012 / 0.0075 (0.0036 / 0.0181
-// before session 23; 0.0017 / 0.0099 with the tail at its mean); under IOR 1.3 0.0054 / 0.0066
-// (0.0123 / 0.0200; 0.0084 / 0.0130); under IOR 1.6, where the film turns evanescent
-// and the base totally reflecting inside the lobe, 0.0036 / 0.0020 with table 5's tail nodes
-// (session 22; 0.0065 / 0.0021 with its 33 even nodes alone, film 1.4, 1 um, roughness 0.1, view
-// cos 0.5, 0.016 above the critical cosine 0.484: 0.0070 / 0.0016 with the slivers merged whole,
-// 0.0062 / 0.0014 with none merged); under IOR 3 (a coat of IOR 3 over a film of 1.5, the stack of
-// the fuzzer finding fuzz/corpus/finding_filmed_metal_at_view.bin: everything past cos 0.94
-// reflects totally) 6e-8 / 0.0018. Session 18's estimate (two halves, four evanescent segments,
-// 12 segments and the quartiles past a critical cosine) measured 0.0056 / 0.0221, 0.0148 /
-// 0.0205, 0.0103 / 0.0026 and 3e-8 / 0.0044; the estimate before issue 31 (four visible normals
-// one by one past a critical cosine, two groups of eight otherwise) 0.0135 / 0.049, 0.038 / 0.042,
-// 0.33 / 0.097 and 3e-8 / 0.091.
+// measured 2026-11-28 with the shipped estimate (slang/lobes/openpbr_microfacet_reflection_lobe.h:
+// a wide lobe without critical cosine in four equal shares, eight Chebyshev segments of the
+// evanescent film, 16 segments and the lobe's sixteenths as cuts past a critical cosine, slivers
+// under 1 % of the light merged into the next segment and those under 2 % in part, and without a
+// critical cosine equal shares with the upper tail on its own at grazing views (at its median)
+// and eighths for very wide lobes), rounded up: in air 0.0012 / 0.0075; under IOR 1.3 0.0054 /
+// 0.0066; under IOR 1.6, where the film turns evanescent and the base totally reflecting inside
+// the lobe, 0.0036 / 0.0020 (table 5's tail nodes; 0.0065 / 0.0021 with its 33 even nodes alone,
+// film 1.4, 1 um, roughness 0.1, view cos 0.5, 0.016 above the critical cosine 0.484); under IOR
+// 3 (a coat of IOR 3 over a film of 1.5, the stack of the fuzzer finding
+// fuzz/corpus/finding_filmed_metal_at_view.bin: everything past cos 0.94 reflects totally) 6e-8 /
+// 0.0018. The coarse cuts of the accuracy study's film_estimate_quartile_cuts setting (two halves,
+// four evanescent segments, 12 segments and the quartiles past a critical cosine) measured
+// 0.0056 / 0.0221, 0.0148 / 0.0205, 0.0103 / 0.0026 and 3e-8 / 0.0044; four visible normals one by
+// one past a critical cosine and two groups of eight otherwise 0.0135 / 0.049, 0.038 / 0.042, 0.33
+// / 0.097 and 3e-8 / 0.091.
 std::vector<EstimateCase> estimate_cases()
 {
     std::vector<EstimateCase> cases;

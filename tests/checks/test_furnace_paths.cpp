@@ -36,8 +36,8 @@ class FurnacePath : public ::testing::TestWithParam<std::string>
 // the rows where the estimate before it failed worst (a coat of IOR 1.8 over a film of 0.9 um lost
 // 13.6 %, a film of 0.6 um under a coat of IOR 1.6 gained 9.6 % with a quadrature in c; a film
 // of 1.2 um under a half coat of IOR 1.3 lost 4 % with two halves at cos 0.1), the grid's worst
-// row until session 22's tail nodes (film 1.4 of 1.5 um under a half coat of IOR 1.8 in water at
-// cos 0.5: 1.0125), and the last rows outside the band until session 23's upper tail on its own
+// row without table 5's tail nodes (film 1.4 of 1.5 um under a half coat of IOR 1.8 in water at
+// cos 0.5: 1.0125), and the last rows outside the band without the upper tail on its own
 // (film 2 of 0.6 um under a coat of IOR 1.6 in water, roughness 0.8: 1.0060 at cos 0.1; film 1.2
 // of 0.9 um under a half coat of IOR 1.3 in air over glass, roughness 0.1: 1.0054 at cos 0.1): 57
 // rows.
