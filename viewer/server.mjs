@@ -44,6 +44,7 @@ export const LIMITS = {
   targetLength: 2048, // characters of a request target (path and query), e.g. 4096
   headersSeconds: 15, // to receive a request's headers, e.g. 60
   requestSeconds: 30, // to receive a whole request, e.g. 120
+  checkSeconds: 5, // how often connections are checked against the two, e.g. 30 (Node's default)
   connections: 256, // open connections; more are dropped, e.g. 1024
 };
 // Characters a path may hold before decoding (RFC 3986 pchar and '/').
@@ -203,7 +204,7 @@ async function handle(request, response, context) {
 // listening on it); `log`: where errors go, one line each.
 export function createViewerServer({ root, toggles, compiler, loopbackOnly = true, log = (line) => console.error(line) }) {
   const context = { root, loopbackOnly, routes: apiRoutes({ root, toggles, compiler }) };
-  const server = http.createServer((request, response) => {
+  const server = http.createServer({ connectionsCheckingInterval: LIMITS.checkSeconds * 1000 }, (request, response) => {
     request.on('error', () => {}); // a client that goes away mid-request: nothing to answer
     response.on('error', () => {});
     handle(request, response, context).catch((error) => {

@@ -4,7 +4,7 @@
 // 1. In this process, on a scratch tree: symbolic links out of the page's set (to a file
 //    outside the tree, to a file of the tree outside the set, through a linked folder) are not
 //    served while a link inside the set is; a handler that throws and a compile that fails are
-//    answered 500 and the server goes on.
+//    answered 500 and the server goes on; a request whose headers never end gets 408.
 // 2. The real server as a child process (`--compiles 1 --queue 2`): one kernel compiled and
 //    kept; a burst of distinct feature masks (one running, two waiting, the rest 503 with
 //    Retry-After; a repeated mask shares its compile); while they run, bad percent-escapes,
@@ -277,8 +277,10 @@ async function testInProcess() {
     };
     const logged = [];
     const server = createViewerServer({ root, toggles, compiler, log: (line) => logged.push(line) });
+    server.headersTimeout = 1000; // checked every LIMITS.checkSeconds (5 s): answered 408 within about 6 s
     await new Promise((resolve) => server.listen(0, '127.0.0.1', resolve));
     const { port } = server.address();
+    const slow = exchange(port, 'GET / HTTP/1.1\r\nhost: 127.0.0.1\r\n'); // headers never finished
     const get = (target) => request(port, 'GET', target);
     const links = await Promise.all(['/materials/outside.mtlx', '/materials/in_tree.mtlx', '/materials/up/secret_in_tree.txt', '/viewer/src/linked.mtlx'].map(get));
     check(links.map((a) => a.status).join(' ') === '404 404 404 200' && links[3].body.toString() === '<materialx/>',
@@ -290,16 +292,23 @@ async function testInProcess() {
     check(thrown.status === 500 && missingTable.status === 500 && logged.length === 2 && logged.every((line) => line.includes('viewer server:')) && after.status === 200,
       `a handler that throws (${thrown.status}) and a table that is missing (${missingTable.status}) get 500 and a log line each (${logged.length}); the server answers after them (${after.status})`);
     check(failed.status === 500 && failed.body.toString().includes('error 1: test'), `a failed compile gets 500 with the compiler's message (${failed.status})`);
-    await new Promise((resolve) => server.close(resolve));
-  } finally {
+    // Checked while the other parts run: the unfinished request gets 408 and its connection ends.
+    return slow.then((answer) => {
+      check(answer.status === 408 && !answer.timedOut, `a request whose headers never end gets 408 (${answer.status})`);
+      server.close();
+      fs.rmSync(scratch, { recursive: true, force: true });
+    });
+  } catch (error) {
     fs.rmSync(scratch, { recursive: true, force: true });
+    throw error;
   }
 }
 
 async function main() {
-  await testInProcess();
+  const slowChecked = await testInProcess();
   await testQueue();
   await testRealServer();
+  await slowChecked;
   if (failures.length > 0) {
     console.log(`\n${failures.length} check(s) failed:\n  ${failures.join('\n  ')}`);
     process.exit(1);
