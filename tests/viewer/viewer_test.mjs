@@ -7,9 +7,10 @@
 // fail the same comparison, and a broken .mtlx must show a visible error while the page keeps
 // working. While the coated metal's kernel compiles (its request held until then), the caption
 // must say so with a running count of seconds, in a screenshot (WORK/viewer_compiling.png); a
-// compile that fails (the server's 500, answered here for the request) must show its message in
-// the red box (WORK/viewer_compile_failed.png). Exit status 0 when every check passes; 1 with
-// the failed checks listed.
+// busy server (503, answered here) must be shown and asked again; a compile that fails (the
+// server's 500, answered here) must show its message in the red box
+// (WORK/viewer_compile_failed.png). Exit status 0 when every check passes; 1 with the failed
+// checks listed.
 // Usage: node tests/viewer/viewer_test.mjs --openpbr BUILD/openpbr --work DIR
 //   [--chromium /usr/bin/chromium] [--screenshot FILE.png]
 import { spawnSync } from 'node:child_process';
@@ -103,40 +104,52 @@ function describe(result) {
 
 const within = (result) => result.channels.every((c) => c.sigmas <= SIGMAS) && result.rmse < result.noise;
 
-// Holds the page's next render-kernel request: { request: a promise of it, release(answer) }.
-// release() sends it on to the server, release({ status, body }) answers it here instead; both
-// end the interception.
-async function holdNextKernelRequest(page) {
+// Intercepts the page's render-kernel requests until end(): next() resolves to the next one
+// (held: the caller continues it to the server or answers it), other requests go on.
+async function interceptKernelRequests(page) {
   await page.setRequestInterception(true);
-  let seen;
-  const request = new Promise((resolve, reject) => {
-    seen = resolve;
-    // The page asks within a second or two (the analysis runs first); a kernel it already has
-    // would never be asked for: an error, not a hang.
-    setTimeout(() => reject(new Error('the page asked for no render kernel within 120 s')), 120000).unref();
-  });
+  const held = [];
+  let wake = () => {};
   const onRequest = (intercepted) => {
     if (intercepted.isInterceptResolutionHandled()) return;
-    if (intercepted.url().includes('/api/kernel/render.wgsl')) seen(intercepted);
-    else intercepted.continue();
+    if (!intercepted.url().includes('/api/kernel/render.wgsl')) {
+      intercepted.continue();
+      return;
+    }
+    held.push(intercepted);
+    wake();
   };
   page.on('request', onRequest);
-  const release = async (answer = null) => {
-    const held = await request;
-    page.off('request', onRequest);
-    if (answer) await held.respond({ status: answer.status, contentType: 'text/plain; charset=utf-8', body: answer.body });
-    else await held.continue();
-    await page.setRequestInterception(false);
+  return {
+    // The page asks within a second or two (the analysis runs first); a kernel it already has
+    // would never be asked for: an error, not a hang.
+    next: () => new Promise((resolve, reject) => {
+      const timer = setTimeout(() => reject(new Error('the page asked for no render kernel within 120 s')), 120000);
+      wake = () => {
+        if (held.length === 0) return;
+        clearTimeout(timer);
+        wake = () => {};
+        resolve(held.shift());
+      };
+      wake();
+    }),
+    end: async () => {
+      page.off('request', onRequest);
+      await page.setRequestInterception(false);
+    },
   };
-  return { request, release };
 }
+
+// Answers a held request here with a status, headers and a text body.
+const answer = (request, status, body, headers = {}) => request.respond({ status, headers, contentType: 'text/plain; charset=utf-8', body });
 
 // The captions the page shows, in order, from here on (window.captionLog).
 async function recordCaptions(page) {
   await page.evaluate(() => {
     const status = document.getElementById('status');
     window.captionLog = [status.textContent];
-    new MutationObserver(() => window.captionLog.push(status.textContent)).observe(status, { childList: true, characterData: true, subtree: true });
+    window.captionObserver ??= new MutationObserver(() => window.captionLog.push(status.textContent));
+    window.captionObserver.observe(status, { childList: true, characterData: true, subtree: true });
   });
 }
 
@@ -164,17 +177,20 @@ function checkCaptions(captions, features) {
 // Loads a .mtlx text through the page (the drop path), waits for SPP samples, reads the mean.
 // `screenshot`: the kernel's compile is held, shown and checked first (showCompile).
 async function renderInPage(page, text, name, features = null, screenshot = null) {
-  const held = screenshot ? await holdNextKernelRequest(page) : null;
-  if (held) await recordCaptions(page);
+  const kernels = screenshot ? await interceptKernelRequests(page) : null;
+  if (kernels) await recordCaptions(page);
   const generation = await page.evaluate((t, n) => window.openpbrViewer.loadMaterialText(t, n), text, name);
-  if (held) {
-    await held.request;
-    await showCompile(page, features, screenshot).finally(() => held.release());
-  }
   if (generation === false) throw new Error(`the page refused ${name}: ${(await page.evaluate(() => window.openpbrViewer.state())).error}`);
+  if (kernels) {
+    const request = await kernels.next();
+    await showCompile(page, features, screenshot).finally(async () => {
+      await request.continue();
+      await kernels.end();
+    });
+  }
   const state = await waitForSamples(page, SPP, generation);
   if (state.error) throw new Error(`page error while rendering ${name}: ${state.error}`);
-  if (held) checkCaptions(await page.evaluate(() => window.captionLog), features);
+  if (kernels) checkCaptions(await page.evaluate(() => window.captionLog), features);
   return { state, image: await page.evaluate(() => window.openpbrViewer.readMean()) };
 }
 
@@ -184,10 +200,17 @@ async function checkFailedCompile(page, screenshot) {
   const text = fs.readFileSync(path.join(DATA, 'plain_dielectric.mtlx'), 'utf8')
     .replace('<input name="specular_roughness"', '<input name="fuzz_weight" type="float" value="0.5" />\n    <input name="specular_roughness"');
   const message = 'compiling the render kernel {fuzz} failed (slangc.mjs targets/kernels/render_steps.slang):\nrender_steps.slang(1): error 30015: a message from the browser test';
-  const held = await holdNextKernelRequest(page);
+  const kernels = await interceptKernelRequests(page);
+  await recordCaptions(page);
   const generation = await page.evaluate((t) => window.openpbrViewer.loadMaterialText(t, 'fuzz_compile_fails.mtlx'), text);
-  await held.request;
-  await held.release({ status: 500, body: `500 Internal Server Error: ${message}\n` });
+  // First the server is busy (503, Retry-After 1 s): the page must say so and ask again.
+  await answer(await kernels.next(), 503, 'the compile queue is full; retry in 1 s\n', { 'retry-after': '1' });
+  const retried = await kernels.next();
+  const busy = (await page.evaluate(() => window.captionLog)).find((c) => c.includes("the server's compile queue is full"));
+  check(/: the server's compile queue is full; asking again for kernel \{fuzz\} in 1 s… \d+ s$/.test(busy ?? ''),
+    `a busy server (503) is shown in the caption ('${busy}') and asked again`);
+  await answer(retried, 500, `500 Internal Server Error: ${message}\n`);
+  await kernels.end();
   const state = await waitForSamples(page, 1, generation);
   const box = await page.$eval('#error', (element) => !element.hidden && element.textContent);
   check(typeof box === 'string' && box.includes(message) && state.error.includes(message),
