@@ -70,7 +70,7 @@ int run_layering(const LayeringCommandSettings& settings, const CommandContext& 
     std::cout << rows.size() << " rows in " << seconds << " s\n";
     if (!settings.json_path.empty())
     {
-        write_json_file(settings.json_path, layering_to_json(rows, options, seconds));
+        write_text_file(settings.json_path, layering_json_text(layering_to_json(rows, options, seconds)));
         std::cout << "wrote " << settings.json_path << "\n";
     }
     if (!settings.pictures_path.empty())

@@ -811,6 +811,7 @@ LayeredEstimate estimate_layered(const LayeredMaterial& material, double mu, con
         throw std::invalid_argument("estimate_layered: view cosine must be in (0, 1] and paths > 0");
     }
     const Stopwatch watch;
+    const ThreadCpuStopwatch cpu_watch;
     const glm::dvec3 view(std::sqrt(std::max(0.0, 1.0 - mu * mu)), 0.0, mu);
     const int bin_count = grid.bin_count();
     const double inverse_solid_angle = 1.0 / grid.bin_solid_angle();
@@ -877,6 +878,7 @@ LayeredEstimate estimate_layered(const LayeredMaterial& material, double mu, con
     // sets' variances is that of the combined luminance.
     estimate.luminance_error = std::sqrt(luminance_variance);
     estimate.seconds = watch.seconds();
+    estimate.cpu_seconds = cpu_watch.seconds();
     return estimate;
 }
 

@@ -182,6 +182,7 @@ struct LayeredEstimate
     std::uint64_t paths = 0;               // walked in all (every stack and channel)
     std::uint64_t capped = 0;              // paths stopped after the event limit (counted as absorbed)
     double seconds = 0.0;                  // wall time of the walks (one thread)
+    double cpu_seconds = 0.0;              // CPU time of the walks' thread (what they cost on a shared machine)
     double luminance_error = 0.0;          // standard error of the albedo's Rec. 709 luminance
 };
 

@@ -86,8 +86,8 @@ ModelEstimate estimate_model(const OpenPBR_ResolvedInputs& inputs, double mu, co
     return estimate;
 }
 
-// ns per query of prepare + eval and of prepare + sample at view cosine mu: one thread, the best
-// of three batches of `queries` (light directions uniform on the sphere).
+// ns per query of prepare + eval and of prepare + sample at view cosine mu: the thread's CPU time,
+// the best of five batches of `queries` (light directions uniform on the sphere).
 std::array<double, 2> time_model(const OpenPBR_ResolvedInputs& inputs, double mu, std::uint32_t queries, std::uint64_t seed)
 {
     const glm::vec3 view(float(std::sqrt(std::max(0.0, 1.0 - mu * mu))), 0.0f, float(mu));
@@ -104,9 +104,9 @@ std::array<double, 2> time_model(const OpenPBR_ResolvedInputs& inputs, double mu
     }
     std::array<double, 2> best{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
     volatile float sink = 0.0f;
-    for (int round = 0; round < 3; ++round)
+    for (int round = 0; round < 5; ++round)
     {
-        const Stopwatch eval_watch;
+        const ThreadCpuStopwatch eval_watch;
         float eval_sum = 0.0f;
         for (std::uint32_t i = 0; i < queries; ++i)
         {
@@ -115,7 +115,7 @@ std::array<double, 2> time_model(const OpenPBR_ResolvedInputs& inputs, double mu
             eval_sum += value.diffuse.y + value.specular.y;
         }
         best[0] = std::min(best[0], eval_watch.seconds() * 1e9 / queries);
-        const Stopwatch sample_watch;
+        const ThreadCpuStopwatch sample_watch;
         float sample_sum = 0.0f;
         for (std::uint32_t i = 0; i < queries; ++i)
         {
@@ -191,7 +191,9 @@ LayeringRow study_one(const LayeringMaterial& material, const LayeredMaterial& l
         {
             const double combined = std::hypot(reference.albedo_error[c], model.albedo_error[c]);
             row.albedo_error = error;
-            row.albedo_error_sigmas = std::min(error / std::max(combined, 1e-300), 1e6);
+            // Standard errors floored at 1e-6: an exact estimate (every weight the same, e.g. a
+            // smooth dielectric) still carries the float rounding of the model's weights.
+            row.albedo_error_sigmas = error / std::max(combined, 1e-6);
         }
         row.reflection_error = std::max(row.reflection_error, std::abs(model.reflection[c] - reference.reflected[c]));
     }
@@ -202,7 +204,7 @@ LayeringRow study_one(const LayeringMaterial& material, const LayeredMaterial& l
     row.model_sample_ns = times[1];
     row.reference_paths = reference.paths;
     row.capped_paths = reference.capped;
-    row.reference_ns = reference.seconds * 1e9 / double(std::max<std::uint64_t>(reference.paths, 1));
+    row.reference_ns = reference.cpu_seconds * 1e9 / double(std::max<std::uint64_t>(reference.paths, 1));
     const double ratio = reference.luminance_error / options.target_standard_error;
     row.reference_estimate_ms = row.reference_ns * double(reference.paths) * ratio * ratio * 1e-6;
     return row;
@@ -339,7 +341,22 @@ std::vector<LayeringRow> run_layering_study(const std::vector<LayeringMaterial>&
 
 namespace {
 
-nlohmann::json color_json(const LayeredColor& c) { return nlohmann::json::array({c[0], c[1], c[2]}); }
+// Six significant digits: beyond every standard error here, and a third of the file's size.
+double rounded(double value)
+{
+    if (!std::isfinite(value) || value == 0.0)
+    {
+        return value;
+    }
+    char text[32];
+    std::snprintf(text, sizeof(text), "%.6g", value);
+    return std::strtod(text, nullptr);
+}
+
+nlohmann::json color_json(const LayeredColor& c)
+{
+    return nlohmann::json::array({rounded(c[0]), rounded(c[1]), rounded(c[2])});
+}
 
 double median(std::vector<double> values)
 {
@@ -434,15 +451,15 @@ nlohmann::json layering_to_json(const std::vector<LayeringRow>& rows, const Laye
                         {"model_reflection", color_json(row.model_reflection)},
                         {"reference_reflection", color_json(row.reference_reflection)},
                         {"reference_reflection_standard_error", color_json(row.reference_reflection_error)},
-                        {"albedo_error", row.albedo_error},
-                        {"albedo_error_sigmas", row.albedo_error_sigmas},
-                        {"reflection_error", row.reflection_error},
-                        {"shape_error", row.shape_error},
-                        {"shape_noise", row.shape_noise},
-                        {"model_ns", row.model_ns},
-                        {"model_sample_ns", row.model_sample_ns},
-                        {"reference_ns", row.reference_ns},
-                        {"reference_estimate_ms", row.reference_estimate_ms},
+                        {"albedo_error", rounded(row.albedo_error)},
+                        {"albedo_error_sigmas", rounded(row.albedo_error_sigmas)},
+                        {"reflection_error", rounded(row.reflection_error)},
+                        {"shape_error", rounded(row.shape_error)},
+                        {"shape_noise", rounded(row.shape_noise)},
+                        {"model_ns", rounded(row.model_ns)},
+                        {"model_sample_ns", rounded(row.model_sample_ns)},
+                        {"reference_ns", rounded(row.reference_ns)},
+                        {"reference_estimate_ms", rounded(row.reference_estimate_ms)},
                         {"reference_paths", row.reference_paths},
                         {"capped_paths", row.capped_paths}});
         model_ns.push_back(row.model_ns);
@@ -462,11 +479,11 @@ nlohmann::json layering_to_json(const std::vector<LayeringRow>& rows, const Laye
                            {"grid_resolution", options.grid.resolution},
                            {"target_standard_error", options.target_standard_error},
                            {"seed", options.seed}};
-    summary["seconds"] = seconds;
+    summary["seconds"] = rounded(seconds);
     summary["rows"] = rows.size();
-    summary["median_model_ns"] = median(model_ns);
-    summary["median_reference_ns_per_path"] = median(reference_ns);
-    summary["median_reference_estimate_ms"] = median(estimate_ms);
+    summary["median_model_ns"] = rounded(median(model_ns));
+    summary["median_reference_ns_per_path"] = rounded(median(reference_ns));
+    summary["median_reference_estimate_ms"] = rounded(median(estimate_ms));
     nlohmann::json& materials = summary["materials"];
     materials = nlohmann::json::array();
     for (const MaterialSummary& entry : summarize(rows))
@@ -474,17 +491,29 @@ nlohmann::json layering_to_json(const std::vector<LayeringRow>& rows, const Laye
         materials.push_back({{"material", entry.material},
                              {"group", entry.group},
                              {"stack", entry.stack},
-                             {"max_albedo_error", entry.albedo_error},
+                             {"max_albedo_error", rounded(entry.albedo_error)},
                              {"max_albedo_error_view_cosine", entry.albedo_view},
-                             {"max_albedo_error_sigmas", entry.albedo_sigmas},
-                             {"max_shape_error", entry.shape_error},
+                             {"max_albedo_error_sigmas", rounded(entry.albedo_sigmas)},
+                             {"max_shape_error", rounded(entry.shape_error)},
                              {"max_shape_error_view_cosine", entry.shape_view},
-                             {"max_shape_error_noise", entry.shape_noise},
-                             {"model_ns", entry.model_ns},
-                             {"reference_ns_per_path", entry.reference_ns},
-                             {"reference_estimate_ms", entry.reference_estimate_ms}});
+                             {"max_shape_error_noise", rounded(entry.shape_noise)},
+                             {"model_ns", rounded(entry.model_ns)},
+                             {"reference_ns_per_path", rounded(entry.reference_ns)},
+                             {"reference_estimate_ms", rounded(entry.reference_estimate_ms)}});
     }
     return document;
+}
+
+std::string layering_json_text(const nlohmann::json& document)
+{
+    std::string text = "{\n  \"rows\": [\n";
+    const nlohmann::json& rows = document.at("rows");
+    for (std::size_t i = 0; i < rows.size(); ++i)
+    {
+        text += "    " + rows[i].dump() + (i + 1 < rows.size() ? ",\n" : "\n");
+    }
+    text += "  ],\n  \"summary\": " + document.at("summary").dump(2) + "\n}\n";
+    return text;
 }
 
 std::string layering_to_text(const std::vector<LayeringRow>& rows)

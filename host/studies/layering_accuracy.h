@@ -15,9 +15,10 @@
 //              model sends to the wrong bins whatever its albedo; with its noise floor (the
 //              expected distance of two estimates of one distribution with these standard
 //              errors, sqrt(2 / pi) sigma per bin);
-//   times      model: ns per prepare + eval and per prepare + sample (one thread, best of 3
-//              batches); reference: ns per path (one thread, the estimate's own walks) and the
-//              ns one albedo estimate takes at the study's target standard error (0.005 of
+//   times      CPU time of the measuring thread (not wall time: the study shares the cores):
+//              model: ns per prepare + eval and per prepare + sample (best of 5 batches);
+//              reference: ns per path (the estimate's own walks) and the
+//              ms one albedo estimate takes at the study's target standard error (0.005 of
 //              luminance by default): paths needed = paths x (standard error / target)^2.
 // coat_darkening steers the model's approximation, not the physics (spec "Coat", darkening:
 // 1 is physical): the model runs at coat_darkening = 1 and the row says so. Every other input
@@ -98,6 +99,9 @@ std::vector<LayeringRow> run_layering_study(const std::vector<LayeringMaterial>&
 // reference_albedo, reference_standard_error, shape_error, model_ns, reference_ns and the rest
 // of LayeringRow; the summary with the settings, the run time, the worst rows and medians.
 nlohmann::json layering_to_json(const std::vector<LayeringRow>& rows, const LayeringOptions& options, double seconds);
+
+// The document as text: one row per line (diffable), the summary indented.
+std::string layering_json_text(const nlohmann::json& document);
 
 // A table of the rows, worst albedo error first within each group.
 std::string layering_to_text(const std::vector<LayeringRow>& rows);

@@ -33,8 +33,8 @@ LayeredEstimate estimate(const openpbr::OpenPBR_ResolvedInputs& inputs, double m
 }
 
 // A rough F82 metal with the edge tint 1 is a Schlick conductor: per channel, the microsurface
-// walk of that F0 (host/tables/microsurface.h). Measured: |difference| 0.2-1.9 combined standard
-// errors (2^16 paths each, 0.0001-0.0004) at cos 1, 0.5, 0.2; asserted within 4.
+// walk of that F0 (host/tables/microsurface.h). Measured: |difference| 0.2-2.1 combined standard
+// errors (0.0006-0.0015) at cos 1 and 0.3; asserted within 4.
 TEST(LayeredReference, MetalLayerIsTheMicrosurfaceWalk)
 {
     auto inputs = defaults();
@@ -59,7 +59,7 @@ TEST(LayeredReference, MetalLayerIsTheMicrosurfaceWalk)
 }
 
 // A translucent base (no coat, no fuzz) is one rough dielectric interface: the walk's reflected
-// and transmitted shares. Measured within 1.0 combined standard errors (about 0.001); asserted
+// and transmitted shares. Measured within 0.6 combined standard errors (0.003-0.005); asserted
 // within 4.
 TEST(LayeredReference, DielectricLayerIsTheMicrosurfaceWalk)
 {
@@ -82,8 +82,8 @@ TEST(LayeredReference, DielectricLayerIsTheMicrosurfaceWalk)
 }
 
 // Fuzz over a black base (a metal of specular_weight 0) is the fuzz fit's own simulation
-// (host/tables/fuzz_fit.h): its reflected fraction. Measured within 1.3 combined standard errors
-// (0.0005-0.002); asserted within 4.
+// (host/tables/fuzz_fit.h): its reflected fraction. Measured within 1.0 combined standard errors
+// (0.002-0.007); asserted within 4.
 TEST(LayeredReference, FuzzLayerIsTheFuzzFitSimulation)
 {
     auto inputs = defaults();
@@ -103,10 +103,11 @@ TEST(LayeredReference, FuzzLayerIsTheFuzzFitSimulation)
 }
 
 // White, non-absorbing stacks (spec "White furnace testing") lose nothing: every path leaves
-// with weight 1 (no roulette: weights never fall) unless the EON's weight varies (sigma > 0),
-// so the albedo is 1 to rounding. Measured: 1 - albedo = 0 exactly for every stack below except
-// the rough diffuse (|1 - albedo| 0.4 standard errors of 0.0006); asserted within 1e-9 or 4
-// standard errors.
+// with weight 1 (no roulette: weights never fall) unless a weight varies by channel or by
+// direction (the film's RGB Fresnel, the rough EON), so the albedo is 1 to rounding. Measured:
+// 1 - albedo = 0 exactly (standard error 0) for the stacks without film or rough diffuse; within
+// 0.6 standard errors (0.007) for the rough diffuse and within 2.1 (0.001) with a film; asserted
+// within 1e-9 + 4 standard errors.
 struct WhiteStack
 {
     std::string name;
@@ -184,8 +185,9 @@ INSTANTIATE_TEST_SUITE_P(Furnace, WhiteStacks,
                          [](const testing::TestParamInfo<WhiteStack>& info) { return info.param.name; });
 
 // Reciprocity: Q(a -> b) = Q(b -> a) for the integral of f cos cos over view bin a and light bin
-// b (a 2 x 2 grid: quarter hemispheres, one per quadrant of azimuth), for absorbing, coloured stacks. Measured |difference|
-// 0.1-1.6 combined standard errors (about 1 % of Q); asserted within 4.
+// b (a 2 x 2 grid: quarter hemispheres, one per quadrant of azimuth), for absorbing, coloured
+// stacks. Measured |difference| at most 2.1 combined standard errors (which are 1-11 % of Q);
+// asserted within 4.
 struct ReciprocityCase
 {
     std::string name;
@@ -239,7 +241,7 @@ INSTANTIATE_TEST_SUITE_P(Stacks, Reciprocity,
 
 // The grid's bins: every direction of a bin maps back to it, and uniform directions fill the
 // bins equally (equal solid angle). Measured: the largest deviation of a bin's count from the
-// mean 2.6 standard deviations over 162 bins (2^18 directions); asserted within 4.5.
+// mean 2.7 standard deviations over 162 bins (2^18 directions); asserted within 4.5.
 TEST(LayeredGrid, BinsRoundTripAndHaveEqualSolidAngle)
 {
     const LayeredGrid grid;
@@ -295,9 +297,9 @@ TEST(LayeredReference, WeightZeroLayersChangeNothing)
 }
 
 // A clear coat of IOR 1 (index-matched, non-absorbing) is physically invisible, at any weight
-// and roughness: same albedo and bins as no coat within noise. Measured: albedo within 0.6
-// combined standard errors (0.0007), the largest bin difference within 2.9 of its standard
-// error over 128 bins; asserted within 4 (albedo) and 5 (each bin, 128 of them).
+// and roughness: same albedo and bins as no coat within noise. Measured: albedo within 0.2
+// combined standard errors (0.004), the largest bin difference 3.5 of its standard error over
+// 162 bins; asserted within 4 (albedo) and 5 (each bin, 162 of them).
 TEST(LayeredReference, IndexMatchedClearCoatIsInvisible)
 {
     auto plain = defaults();
@@ -320,10 +322,50 @@ TEST(LayeredReference, IndexMatchedClearCoatIsInvisible)
     }
 }
 
+// An absorbing smooth coat (IOR 1.6, coat_color c) over a Lambertian of albedo rho under an
+// interface of the same IOR (index-matched: specular_ior 1.6, so rho = base_color) has a closed
+// form at normal incidence, the geometric series of the diffuse light's round trips:
+//   R = F0 + (1 - F0) t(1) rho A / (1 - rho B),  t(mu) = c^(1 / (2 mu)) one pass at cosine mu,
+//   A = <t (1 - F_in)>, B = <t^2 F_in> over cosine-weighted directions inside, F_in the Fresnel
+//   factor from inside (total internal reflection beyond 38.7 degrees).
+// Measured: 1.8 standard errors (0.0015, 2^15 paths) at c = 0.6, rho = 0.8 (R = 0.2436; the
+// shipped model gives 0.374 there); within 0.5 at c = 1 and c = 0.4, rho = 0.5; asserted within 4.
+TEST(LayeredReference, AbsorbingCoatOverLambertianMatchesTheGeometricSeries)
+{
+    for (const auto& [coat_color, base_rho] : {std::pair{0.6, 0.8}, std::pair{0.4, 0.5}})
+    {
+        const double color = coat_color;  // a copy the lambda below may capture (C++17)
+        const double rho = base_rho;
+        auto inputs = defaults();
+        inputs.base_color = glm::vec3(float(rho));
+        inputs.specular_ior = 1.6f;
+        inputs.coat_weight = 1.0f;
+        inputs.coat_ior = 1.6f;
+        inputs.coat_roughness = 0.0f;
+        inputs.coat_color = glm::vec3(float(color));
+        const LayeredEstimate layered = estimate(inputs, 1.0);
+        const double n = 1.6;
+        const auto pass = [&](double mu) { return std::pow(color, 1.0 / (2.0 * mu)); };
+        double a = 0.0;
+        double b = 0.0;
+        const int steps = 20000;
+        for (int i = 0; i < steps; ++i)
+        {
+            const double mu = std::sqrt((i + 0.5) / steps);  // cosine-weighted: mu^2 uniform
+            const double f_inside = openpbr::host::microsurface_fresnel_dielectric(mu, 1.0 / n);
+            a += pass(mu) * (1.0 - f_inside) / steps;
+            b += pass(mu) * pass(mu) * f_inside / steps;
+        }
+        const double f0 = openpbr::host::microsurface_fresnel_dielectric(1.0, n);
+        const double expected = f0 + (1.0 - f0) * pass(1.0) * rho * a / (1.0 - rho * b);
+        EXPECT_NEAR(layered.albedo[1], expected, 4.0 * layered.albedo_error[1]) << "coat colour " << color;
+    }
+}
+
 // The glossy-diffuse calibration meets the spec's definition of base_color (eq.
 // glossy_diffuse_albedo_constraint): at normal incidence and diffuse roughness 0 the albedo is
 // E_spec + (1 - E_spec) C, with E_spec the interface's reflectance walked on its own.
-// Measured within 0.8 combined standard errors (0.0008); asserted within 4.
+// Measured within 1.1 combined standard errors (0.0012-0.0016); asserted within 4.
 TEST(LayeredReference, GlossyDiffuseMeetsTheBaseColorDefinition)
 {
     auto inputs = defaults();

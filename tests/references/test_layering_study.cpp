@@ -25,9 +25,10 @@ LayeringOptions quick_options()
 }
 
 // A rough white metal is one layer, which the model's compensated lobe reproduces to within the
-// compensation's own error: measured |model - reference| 0.004 at cos 1 and 0.5 (reference
-// standard error 0, every path leaves with weight 1); asserted below 0.02. A coloured coat over
-// a diffuse is off by more, but finite and below 0.2 (measured 0.05).
+// compensation's own error: measured |model - reference| 0.003-0.004 at cos 1 and 0.5 (reference
+// standard error 0: every path leaves with weight 1); asserted below 0.02. A coloured coat over
+// a diffuse is off by more (0.09-0.10, docs/layering-accuracy.md): its rows are only checked to
+// be complete, its coat_darkening 0.5 replaced by 1 and said so.
 TEST(LayeringStudy, RowsForEveryMaterialAndView)
 {
     LayeringMaterial white_metal{"white metal", "test", openpbr::openpbr_make_default_resolved_inputs()};
@@ -47,7 +48,16 @@ TEST(LayeringStudy, RowsForEveryMaterialAndView)
         EXPECT_LE(row.shape_error, 1.0);
         EXPECT_GT(row.model_ns, 0.0);
         EXPECT_GT(row.reference_ns, 0.0);
-        EXPECT_LT(row.albedo_error, row.material == "white metal" ? 0.02 : 0.2) << row.material << " " << row.view_cosine;
+        for (std::size_t c = 0; c < 3; ++c)
+        {
+            EXPECT_GE(row.reference_albedo[c], 0.0);
+            EXPECT_LE(row.reference_albedo[c], 1.0 + 4.0 * row.reference_standard_error[c]);
+            EXPECT_TRUE(std::isfinite(row.model_albedo[c]));
+        }
+        if (row.material == "white metal")
+        {
+            EXPECT_LT(row.albedo_error, 0.02) << row.view_cosine;
+        }
     }
     EXPECT_NE(rows[2].note.find("coat_darkening"), std::string::npos);
 }
