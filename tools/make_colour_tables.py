@@ -37,7 +37,7 @@ From them it writes (all committed; `--check` says whether they are up to date):
 
 Usage: tools/make_colour_tables.py [--check] [ROOT]  (ROOT: the repository, default the parent
 of tools/). --check writes nothing and exits 1 naming every output that differs from what this
-script would write. Pure Python 3 (no packages): about 2 s.
+script would write. Pure Python 3 (no packages): about 2 s of CPU.
 """
 import json
 import math
@@ -234,14 +234,14 @@ def dominant_wavelength(primary, white):
         point = (x / total - white[0], y / total - white[1])
         return direction[0] * point[1] - direction[1] * point[0], point
 
-    previous, previous_point = side(0)
+    previous, _ = side(0)
     for index in range(1, len(CIE_X)):
         current, point = side(index)
         ahead = point[0] * direction[0] + point[1] * direction[1] > 0.0
         if ahead and (previous > 0.0) != (current > 0.0):
             fraction = previous / (previous - current)
             return CIE_START_NM + CIE_STEP_NM * (index - 1 + fraction)
-        previous, previous_point = current, point
+        previous = current
     raise ValueError(f"no dominant wavelength for primary {primary}")
 
 
