@@ -16,7 +16,7 @@
 
 int main(int argc, char** argv)
 {
-    CLI::App app{"openpbr: OpenPBR 1.1 BSDF tools (conformance, table generation, ...)"};
+    CLI::App app{"openpbr: OpenPBR 1.1.1 BSDF tools (conformance, table generation, ...)"};
     app.require_subcommand(1);
 
     std::string materials_directory = OPENPBR_DEFAULT_MATERIALS_DIR;
