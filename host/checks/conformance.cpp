@@ -842,6 +842,21 @@ std::vector<std::string> conformance_violations(const ConformancePathResult& res
     return violations;
 }
 
+PathVerdict conformance_verdict(const ConformanceReport& report)
+{
+    PathVerdict verdict;
+    for (const ConformancePathResult& path : report.paths)
+    {
+        if (!path.executed)
+        {
+            verdict.not_executed.push_back({path.name, path.note});
+            continue;
+        }
+        (conformance_violations(path).empty() ? verdict.passed : verdict.failed).push_back(path.name);
+    }
+    return verdict;
+}
+
 nlohmann::json to_json(const ConformanceReport& report)
 {
     nlohmann::json json;
@@ -899,6 +914,7 @@ nlohmann::json to_json(const ConformanceReport& report)
                           {"angle_max_radians", tolerances.angle_max},
                           {"condition_factor", tolerances.condition_factor},
                           {"lobe_mismatch_fraction", tolerances.lobe_mismatch_fraction}};
+    json["verdict"] = to_json(conformance_verdict(report));
     return json;
 }
 
@@ -945,6 +961,7 @@ std::string to_text(const ConformanceReport& report)
         text << "    old metric (pooled, not the verdict): max rel err " << path.max_relative_error << ", p99.9 "
              << path.p999_relative_error << ", worst: " << path.worst_output << "\n";
     }
+    text << verdict_line(conformance_verdict(report)) << "\n";
     return text.str();
 }
 
