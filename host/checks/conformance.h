@@ -11,6 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "host/checks/path_verdict.h"
 #include "host/scene/material_library.h"
 #include "host/scene/material_packing.h"
 #include "host/gpu/vulkan_runner.h"
@@ -245,7 +246,12 @@ ConformanceReport run_conformance(const std::vector<Material>& materials, const 
 // The bounds of conformance_tolerances() a path breaks, one line each (empty: it passes).
 std::vector<std::string> conformance_violations(const ConformancePathResult& result);
 
+// The run's verdict: an executed path passes when conformance_violations finds nothing.
+PathVerdict conformance_verdict(const ConformanceReport& report);
+
+// JSON: the report's figures per path, the tolerances, and "verdict" (to_json(PathVerdict)).
 nlohmann::json to_json(const ConformanceReport& report);
+// Text: a line per path (then its figures and violations), the verdict line last.
 std::string to_text(const ConformanceReport& report);
 
 }  // namespace openpbr::host
