@@ -16,7 +16,7 @@
 #endif
 #include "../interop/openpbr_interop.h"
 #include "openpbr_bsdf.h"
-// The established API form (README "Two API forms"), implemented through openpbr_bsdf.h.
+// The established API form (docs/api.md "The established API form"), implemented through openpbr_bsdf.h.
 #include "openpbr_established_api.h"
 
 #endif

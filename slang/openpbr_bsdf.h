@@ -144,7 +144,7 @@ OPENPBR_FUNC vec3 openpbr_dispersive_ior(float ior_d, float abbe_number, float d
     return clamp(vec3(a) + b / (lambda * lambda), vec3(OPENPBR_IOR_MIN), vec3(OPENPBR_IOR_MAX));
 }
 
-// The inputs every prepare step reads: the input contract (README "Input contract"), then the
+// The inputs every prepare step reads: the input contract (docs/api.md "Input contract"), then the
 // feature toggles (slang/openpbr_features.h); run once per prepare.
 OPENPBR_FUNC OpenPBR_ResolvedInputs openpbr_prepare_inputs(OPENPBR_IN(OpenPBR_ResolvedInputs) raw_inputs)
 {
@@ -250,8 +250,8 @@ OPENPBR_FUNC float openpbr_selection_white_scale(vec3 channel_weights)
 // zero (a lobe whose weight is zero costs nothing): the others keep the empty lobe and
 // selection probability 0, which eval, pdf and sample never look at. With a feature toggled off
 // its weight is the constant 0, so the compiler removes the set-up altogether.
-// `inputs` have passed openpbr_prepare_inputs. exterior_ior: the absolute IOR of the medium the view is in (README "Exterior
-// medium"), already passed through openpbr_contract_exterior_ior. `path_throughput` only steers lobe selection
+// `inputs` have passed openpbr_prepare_inputs. exterior_ior: the absolute IOR of the medium the view is in (docs/api.md
+// "Exterior medium"), already passed through openpbr_contract_exterior_ior. `path_throughput` only steers lobe selection
 // (openpbr_selection_channel_weights); white gives the unweighted probabilities.
 OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare_lobes_of(OPENPBR_IN(OpenPBR_ResolvedInputs) inputs, vec3 view_world,
                                                            vec3 rgb_wavelengths_nm, float exterior_ior, vec3 path_throughput)

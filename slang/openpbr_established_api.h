@@ -2,8 +2,8 @@
 // interface of the OpenPBR BSDF library renderers adopted first), each implemented through this
 // project's own functions, so code written against that interface compiles here by changing
 // the include path. Nothing here adds physics: every function forwards to, or rearranges the
-// results of, the project-form API of openpbr_bsdf.h and openpbr_volume.h (README "Two API
-// forms").
+// results of, the project-form API of openpbr_bsdf.h and openpbr_volume.h (docs/api.md "The
+// established API form").
 //
 //   OpenPBR_PreparedBsdf prepared = openpbr_prepare(inputs, path_throughput, OpenPBR_BaseRgbWavelengths_nm,
 //                                                   OpenPBR_VacuumIor, view_direction);

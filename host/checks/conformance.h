@@ -1,6 +1,6 @@
 // Cross-target conformance: one batch of BSDF queries (material, view, light, three random
 // numbers) evaluated by the CPU build of the single source and by each GPU path, compared
-// output by output. See README "Conformance".
+// output by output. See docs/conformance.md.
 #pragma once
 
 #include <cstddef>

@@ -1,4 +1,4 @@
-// Numerical stability on hard cases (README "Stability"): a corpus of hard inputs
+// Numerical stability on hard cases (docs/stability.md): a corpus of hard inputs
 // (tests/data/stability_corpus.json) evaluated by the CPU build and by every GPU path through the
 // conformance kernel, checked for non-finite and negative outputs, invalid samples and energy
 // gain (mean sample weight above 1).

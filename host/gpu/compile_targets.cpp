@@ -182,7 +182,7 @@ struct SlangEntry
     const char* output_name;  // file name without the extension
     // The render kernel: WGSL only, with every toggle an `override`; a driver that compiles
     // overrides unfolded (SwiftShader) builds kernels faster specialized when generated
-    // (slangc.mjs -D OPENPBR_FEATURE_<NAME>=0; README "WebGPU").
+    // (slangc.mjs -D OPENPBR_FEATURE_<NAME>=0; docs/specialization.md "WGSL: overrides or folded when generated").
     bool wgsl_only;
 };
 

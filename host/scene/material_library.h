@@ -9,7 +9,7 @@
 // replaced by a default, because a silently wrong material is harder to notice than an error.
 //
 // Values are kept as written, including values outside the ranges the specification
-// documents: openpbr_prepare clamps them (README "Input contract"), and a loader that clamped
+// documents: openpbr_prepare clamps them (docs/api.md "Input contract"), and a loader that clamped
 // too would hide what the file really says. The one change: every color3 value is converted
 // from its colour space (its input's colorspace attribute, else the document's, else ACEScg,
 // the specification's default) into the library's working space (host/scene/colour_spaces.h,

@@ -143,7 +143,7 @@ function header(options, library) {
 //   let pdf = openpbr_pdf(bsdf, light);
 //   let s = openpbr_sample(bsdf, u);                               // u: vec3<f32> in [0, 1)
 //
-// Bindings (group 0), storage buffers of f32 the application fills (README "WebGPU"):
+// Bindings (group 0), storage buffers of f32 the application fills (docs/integrating.md "WGSL for WebGPU engines"):
 //   @binding(0) openpbr_lut_data        slang/generated/openpbr_lut.bin (energy-compensation tables)
 //   @binding(1) openpbr_fuzz_ltc_data   slang/generated/openpbr_fuzz_ltc.bin (fuzz LTC table)
 //   @binding(2) openpbr_material_data   packed materials, OPENPBR_PACKED_MATERIAL_FLOATS (80) floats

@@ -452,7 +452,7 @@ std::vector<FurnaceCase> furnace_cases()
     for (const host::FurnaceConfig& config : host::white_furnace_configs())
     {
         // Every row of the relative-IOR sweep included: a row outside the sweep's band is held
-        // to its measured band of host::furnace_known_limits() (README "Known limits").
+        // to its measured band of host::furnace_known_limits() (docs/known-limits.md).
         for (float view_cos : host::furnace_view_cosines(config))
         {
             for (host::FurnaceSide side : config.sides)
@@ -524,7 +524,7 @@ TEST_P(WhiteFurnace, Albedo)
                                                  << (band.known_limit ? " (known limit)" : "");
         EXPECT_GE(a + 3.0 * se, band.min_albedo) << "white furnace, channel " << channel << ": albedo " << a << " +- " << se
                                                  << (band.known_limit ? " (known limit)" : "");
-        // A known limit is held to its measured band above instead (README "Known limits").
+        // A known limit is held to its measured band above instead (docs/known-limits.md).
         if (c.config->expectation == host::FurnaceExpectation::energy_conserving &&
             c.view_cos >= host::furnace_tolerance_min_cos && !band.known_limit)
         {
@@ -618,7 +618,7 @@ const std::vector<ReciprocityCase>& reciprocity_cases()
         {"eon_thin_walled_transmission", eon_lobe(glm::vec3(0.7f), 0.6f, -1.0f), true},
         {"ggx_thin_walled_transmission",
          microfacet_lobe(openpbr_ggx_alpha(0.4f, 0.0f), openpbr_make_constant_fresnel(glm::vec3(1.0f)), -1.0f), true},
-        // Not listed: the fuzz LTC lobe, which is not reciprocal (README "Model choices").
+        // Not listed: the fuzz LTC lobe, which is not reciprocal (docs/model.md).
     };
     return cases;
 }
