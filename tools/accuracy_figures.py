@@ -16,7 +16,8 @@ writes
                                   of `openpbr accuracy layering` exists);
   OUT/images/accuracy-<strip>.png one strip per family from `openpbr bench accuracy --pictures`:
                                   each setting, and below it |setting - reference| scaled;
-  with --markdown, the per-family tables of docs/accuracy-vs-time.md on stdout instead.
+  with --markdown, the per-family tables of docs/accuracy-vs-time.md on stdout instead; with
+  --choose, its choose-your-setting table.
 Needs matplotlib (Debian: python3-matplotlib) and numpy.
 """
 import argparse
@@ -443,6 +444,53 @@ def markdown_tables(study):
     return "\n".join(out)
 
 
+# The choose-your-setting rule, stated in docs/accuracy-vs-time.md: real time takes, among the
+# settings whose error is at most REAL_TIME_ERROR, those within TIME_NOISE of the fastest (device
+# time on lavapipe where measured, else CPU), and of those the shipped one, else the least error;
+# offline takes the least error, the shipped one among equals, then the faster. For the sampler (a
+# variance knob) both take the best efficiency, 1 / (variance x time).
+REAL_TIME_ERROR = 0.01  # 1 % (relative or absolute reflectance): about one 8-bit step at mid-grey
+TIME_NOISE = 0.05  # settings of equal work timed within 5 % of each other (docs/accuracy-vs-time.md)
+
+
+def setting_time(setting):
+    return setting["lavapipe_ns"]["best"] if "lavapipe_ns" in setting else setting["cpu_ns"]["best"]
+
+
+def suited_settings(family):
+    """(index for real time, index for offline) of a family's settings."""
+    settings = family["settings"]
+    indices = range(len(settings))
+    if family["kind"] == "variance":
+        best = max(indices, key=lambda i: settings[i]["other_errors"].get("efficiency relative to the shipped setting", 0))
+        return best, best
+    offline = min(indices, key=lambda i: (settings[i]["error"], not settings[i]["shipped"], settings[i]["cpu_ns"]["best"]))
+    within = [i for i in indices if settings[i]["error"] <= REAL_TIME_ERROR] or [offline]
+    fastest = min(setting_time(settings[i]) for i in within)
+    quick = [i for i in within if setting_time(settings[i]) <= fastest * (1 + TIME_NOISE)]
+    return min(quick, key=lambda i: (not settings[i]["shipped"], settings[i]["error"])), offline
+
+
+def choose_table(study):
+    """The choose-your-setting table: per knob and setting its error (the family's metric), CPU,
+    lavapipe and WebGPU times, and which setting suits real time and which offline."""
+    out = ["| knob | setting | error | CPU ns | lavapipe ns | WebGPU ns | suits |", "| --- | --- | --- | --- | --- | --- | --- |"]
+    for family in study["families"]:
+        real_time, offline = suited_settings(family)
+        for i, s in enumerate(family["settings"]):
+            if family["kind"] == "variance":
+                efficiency = s["other_errors"].get("efficiency relative to the shipped setting", 0)
+                error = f"efficiency x{efficiency:.2f}"
+            else:
+                error = "0 (reference)" if s["reference"] else ("0" if s["error"] == 0 else f"{s['error']:.2g}")
+            suits = ", ".join(name for name, index in (("real time", real_time), ("offline", offline)) if index == i)
+            gpu = [f"{s[k]['best']:.0f}" if k in s else "-" for k in ("lavapipe_ns", "webgpu_ns")]
+            name = s["setting"] + (" **(shipped)**" if s["shipped"] and "shipped" not in s["setting"] else "")
+            out.append(f"| {family['family'] if i == 0 else ''} | {name} | {error} | {s['cpu_ns']['best']:.0f} | "
+                       f"{gpu[0]} | {gpu[1]} | {suits} |")
+    return "\n".join(out)
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--json", required=True, help="the study's JSON, e.g. docs/accuracy-vs-time.json")
@@ -450,11 +498,15 @@ def main():
     parser.add_argument("--pictures", help="`openpbr bench accuracy --pictures DIR`'s directory")
     parser.add_argument("--out", default="docs", help="where the figure goes (strips under OUT/images), e.g. docs")
     parser.add_argument("--markdown", action="store_true", help="print the per-family tables as Markdown and stop")
+    parser.add_argument("--choose", action="store_true", help="print the choose-your-setting table as Markdown and stop")
     args = parser.parse_args()
     with open(args.json) as file:
         study = json.load(file)
     if args.markdown:
         print(markdown_tables(study))
+        return 0
+    if args.choose:
+        print(choose_table(study))
         return 0
     layering = None
     if args.layering and os.path.exists(args.layering):
