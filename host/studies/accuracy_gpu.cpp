@@ -73,7 +73,9 @@ std::vector<float> conformance_queries(const Workload& workload)
 // (a compile took about a minute on 2 cores at load 20, 4 s idle).
 std::string kernel_stamp(const BsdfVariant& variant, const std::filesystem::path& root)
 {
-    std::filesystem::file_time_type newest{};
+    // From the clock's minimum: libstdc++'s file clock counts from 2174, so today's times are
+    // negative and a zero start hid every change.
+    std::filesystem::file_time_type newest = std::filesystem::file_time_type::min();
     for (const char* folder : {"slang", "targets/kernels"})
     {
         for (const auto& entry : std::filesystem::recursive_directory_iterator(root / folder))
