@@ -1,32 +1,37 @@
-// accuracy.h - `openpbr bench accuracy`: what each accuracy knob of the BSDF costs in time,
-// measured in one run (docs/accuracy-vs-time.md has the results and the recommendations).
+// accuracy.h - `openpbr bench accuracy`: what each accuracy knob of the BSDF costs in time and
+// what it gets wrong, measured in one run (docs/accuracy-vs-time.md has the results).
 //
-// Every setting of every knob gets an error and a time:
-//   knobs   energy compensation (none / analytic fit / tables at 16, 32, 64), table storage
-//           (compiled-in array, float32 buffer, 16-bit values, texture with hardware filtering on
-//           lavapipe), fast-math hooks, visible-normal sampling (Heitz 2018 / spherical caps /
-//           bounded VNDF), thin film (full / fast), precision (C++ float / double), baselines
-//           (bare real-time GGX with Schlick-Smith or height-correlated visibility, split-sum
-//           IBL with DFG tables at 4, 16, 64, 256 samples);
-//   errors  directional albedo against the microsurface random walk (host/tables/microsurface.h,
-//           cached), max and mean over roughness x cos theta x F0 of a Schlick conductor (F0 in
-//           place of the IOR axis: the compensation is the same for every Fresnel); white
-//           furnace deviation (white metal and white glass); per-query relative error against
-//           the shipped build and against the double-precision build (tools/make_double_headers.py);
-//           the variance of the albedo estimator (sampling); bit differences between array and
-//           buffer tables (must be 0);
-//   times   CPU ns per prepare + eval and per prepare + sample (one thread, the best of 15 rounds
-//           that each time every variant, best of three runs per round),
-//           and, with `compile`, the Slang compile time and SPIR-V size of the conformance kernel
-//           with the setting's defines and that kernel's queries/s on lavapipe (with its
-//           per-query error against the CPU build).
-// Output: {"rows": [{"knob", "setting", "error_metric", "error", "time_metric", "time"}]},
-// CSV with the same columns, and an SVG plot of albedo error against ns per eval on log axes
-// with the Pareto front.
+// Each knob family is measured with the metric that fits it, against a reference that isolates
+// it (the same model with that part exact), and timed on the workload where it matters:
+//   compensation   none / analytic fit / table 0 at 16, 64, 128 (shipped): directional albedo
+//                  of a white metal against the same model with E_ggx from a 256 x 256 table
+//                  integrated in double (max over roughness x view cosine);
+//   table storage  float32 array (shipped) / float32 buffer / 16-bit values: per-query relative
+//                  eval error against the float32 values (99th percentile), and bit identity;
+//   fast math      precise (shipped) / the OPENPBR_FAST_* hooks: the same against precise math;
+//   precision      float (shipped) / double: the same against the double build;
+//   thin film      full (shipped) / fast: the film's reflectance against the full film (max
+//                  absolute, over films, thicknesses and angles), eval error on filmed materials;
+//   film estimate  shipped cuts / coarse cuts / the film at the view only: the estimate against
+//                  a dense 128 x 128 average over the lobe's visible normals (max absolute);
+//   vndf sampling  spherical caps (shipped) / Heitz 2018 / bounded: a variance knob, by the
+//                  efficiency 1 / (variance x time) relative to the shipped setting.
+// Times: CPU ns per prepare + eval (or sample) on the family's workload, one thread, every
+// setting timed once per round over many rounds (best and median kept); with `gpu`, the Slang
+// conformance kernel with the setting's defines timed on lavapipe (Vulkan timestamps) and on
+// SwiftShader through Dawn (WebGPU timestamps), paired in the same run.
+// Model floors, rows of their own: the compensation model against the microsurface random walk
+// (host/tables/microsurface.h, with real-time baselines beside it), and the layering model
+// against the layered ground truth, read from `openpbr accuracy layering`'s JSON when present.
+// With `pictures_directory`, noise-free picture strips per family (a sphere under one light,
+// pixel = eval x cos, per setting, and the film's reflectance of the soap bubble), as float32
+// images with a manifest; tools/accuracy_figures.py draws the figures and strips.
 #pragma once
 
 #include <cstdint>
 #include <filesystem>
+#include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -41,40 +46,100 @@ struct AccuracyOptions
     std::uint32_t albedo_samples = 4096;     // BSDF samples per albedo estimate, e.g. 4096
     std::uint32_t timing_queries = 8192;     // queries per timing batch, e.g. 8192
     std::uint32_t table_samples = 1u << 14;  // Monte Carlo samples per node of the 16/64 tables
+    int timing_rounds = 15;                  // CPU timing rounds (best and median kept), e.g. 15
     // Ground-truth and table cache, e.g. build/accuracy-cache; empty: no cache.
     std::filesystem::path cache_directory;
-    // Slang compile time, SPIR-V size and lavapipe queries/s per setting (needs node, the
-    // repository and a Vulkan device); off in quick mode.
-    bool compile = true;
-    std::filesystem::path repository_root;  // for targets/slangc.mjs and the kernel, e.g. "."
-    bool progress = true;                   // progress bar on stderr
+    // Device times of the Slang kernel per setting on lavapipe and on SwiftShader (needs node,
+    // the repository, a Vulkan device; off in quick mode).
+    bool gpu = true;
+    // The SwiftShader (WebGPU) rows too: SwiftShader builds each setting's pipeline for 20 s
+    // (idle) to 2 min (2 cores at load 20), so they are asked for, e.g. true for the docs' run.
+    bool webgpu = false;
+    std::filesystem::path repository_root;  // for targets/slangc.mjs and the kernels, e.g. "."
+    // `openpbr accuracy layering`'s JSON (the layering model's floor), e.g.
+    // docs/layering-accuracy.json; a missing file leaves the floor out with a note.
+    std::filesystem::path layering_json;
+    // Where the picture strips go (float32 images and manifest.json), e.g.
+    // build/accuracy-pictures; empty: no pictures.
+    std::filesystem::path pictures_directory;
+    bool progress = true;  // progress bar on stderr
 
     // The options with the --quick reductions applied.
     AccuracyOptions effective() const;
 };
 
-struct AccuracyRow
+// A time over the rounds: the best (least disturbed by other processes) and the median.
+struct AccuracyTime
 {
-    std::string knob;
-    std::string setting;
-    std::string error_metric;
+    double best = 0.0;
+    double median = 0.0;
+};
+
+// One setting of a knob family.
+struct AccuracySetting
+{
+    std::string variant;  // the variant's name in accuracy_variants.cmake, e.g. "table_16"
+    std::string setting;  // e.g. "table 16x16"
+    bool shipped = false;
+    bool reference = false;  // the family's reference: error 0 by definition
+    // The family's metric (AccuracyFamily::error_metric) and its uncertainty (one standard error,
+    // 0 where the metric is noise-free).
     double error = 0.0;
+    double error_uncertainty = 0.0;
+    std::map<std::string, double> other_errors;  // further metrics by name
+    AccuracyTime cpu_ns;                         // AccuracyFamily::time_metric
+    std::optional<AccuracyTime> lavapipe_ns;     // device ns per prepare + eval, lavapipe
+    std::optional<AccuracyTime> webgpu_ns;       // device ns per prepare + eval, SwiftShader
+    bool pareto = false;                         // no other setting of the family is both faster and better
+};
+
+struct AccuracyFamily
+{
+    std::string name;          // e.g. "compensation"
+    std::string kind;          // "bias" or "variance"
+    std::string error_metric;  // e.g. "white-metal albedo error vs exact E_ggx (max)"
+    std::string reference;     // what the errors are measured against
+    std::string time_metric;   // e.g. "CPU ns per prepare+eval (metal workload)"
+    std::vector<AccuracySetting> settings;
+};
+
+// A model floor: the shipped model against a ground truth of the physics it approximates.
+struct AccuracyFloorRow
+{
+    std::string setting;
+    double error = 0.0;
+    double error_uncertainty = 0.0;
+    double time_ns = 0.0;
     std::string time_metric;
-    double time = 0.0;
-    bool plotted = false;  // the primary pair (albedo error max vs ns per eval) shown in the plot
+};
+
+struct AccuracyFloor
+{
+    std::string name;          // "compensation" or "layering"
+    std::string error_metric;  // e.g. "white-metal albedo error vs random walk (max)"
+    std::string reference;
+    std::string note;  // e.g. why the floor is absent
+    std::vector<AccuracyFloorRow> rows;
+    nlohmann::json details;  // e.g. the layering file's per-material summary
+};
+
+struct AccuracyReport
+{
+    std::vector<AccuracyFamily> families;
+    std::vector<AccuracyFloor> floors;
+    nlohmann::json run;  // options, machine, run time
 };
 
 // Runs the study. Throws std::runtime_error on failures (e.g. an unwritable cache).
-std::vector<AccuracyRow> run_accuracy_study(const AccuracyOptions& options);
+AccuracyReport run_accuracy_study(const AccuracyOptions& options);
 
-nlohmann::json accuracy_to_json(const std::vector<AccuracyRow>& rows);
-std::string accuracy_to_csv(const std::vector<AccuracyRow>& rows);
-std::string accuracy_to_text(const std::vector<AccuracyRow>& rows);
-// Log-log plot of the plotted rows (albedo error against time) with the Pareto front (the
-// settings no other setting beats in both error and time) joined by a line.
-std::string accuracy_to_svg(const std::vector<AccuracyRow>& rows);
-// Indices (into rows) of the Pareto-optimal plotted rows, sorted by time.
-std::vector<std::size_t> accuracy_pareto_front(const std::vector<AccuracyRow>& rows);
+// {"run", "families": [...], "model_floors": {...}, "rows": [flat rows]}.
+nlohmann::json accuracy_to_json(const AccuracyReport& report);
+// One row per setting and metric: family, setting, metric, value, time metric, time.
+std::string accuracy_to_csv(const AccuracyReport& report);
+std::string accuracy_to_text(const AccuracyReport& report);
+// Marks the settings of each family that no other setting beats in both error and CPU time.
+void mark_pareto_front(AccuracyFamily& family);
 
 // Split-sum DFG table (Karis 2013) of `size` x `size` texels over (n.v, roughness) in [0, 1]^2
 // (texel centres at the node coordinates i / (size - 1)), `samples` Hammersley samples per

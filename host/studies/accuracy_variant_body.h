@@ -4,6 +4,7 @@
 // OPENPBR_VNDF_METHOD) and OPENPBR_ACCURACY_VARIANT_FACTORY (the function name, e.g.
 // make_variant_vndf_bounded), then includes this file. No include guard: one inclusion per
 // translation unit by design.
+#include <algorithm>
 #include <cmath>
 
 // A float32 buffer-mode table is a pointer in ::openpbr (slang/openpbr_lut.h), where the array
@@ -17,16 +18,30 @@
 #include "host/support/directional_albedo.h"
 #include "slang/openpbr.h"
 
+namespace openpbr::host::OPENPBR_CPP_VARIANT_NAMESPACE {
+// The packed materials the unpacking below reads: set by each entry point for its own call
+// (PackedMaterials), so the variant's functions are for one thread at a time.
+inline const float* packed_materials = nullptr;
+}  // namespace openpbr::host::OPENPBR_CPP_VARIANT_NAMESPACE
+
+// This variant's reader of packed materials, accuracy_unpack_material(index), in its own
+// namespace (slang/openpbr_material_packing.h's named form).
+#define OPENPBR_MATERIAL_UNPACK_NAME accuracy_unpack_material
+#define OPENPBR_MATERIAL_UNPACK_READ(index) ::openpbr::host::OPENPBR_CPP_VARIANT_NAMESPACE::packed_materials[index]
+#include "slang/openpbr_material_packing.h"
+
 namespace openpbr::host {
 
 namespace OPENPBR_CPP_VARIANT_NAMESPACE {
 
-inline ::openpbr::OPENPBR_CPP_VARIANT_NAMESPACE::OpenPBR_ResolvedInputs resolve(const AccuracyMaterial& material)
+// Points packed_materials at `materials` for the lifetime of one entry point's call.
+struct PackedMaterials
 {
-    auto inputs = ::openpbr::OPENPBR_CPP_VARIANT_NAMESPACE::openpbr_make_default_resolved_inputs();
-    accuracy_apply_material(material, inputs);
-    return inputs;
-}
+    explicit PackedMaterials(const float* materials) { packed_materials = materials; }
+    ~PackedMaterials() { packed_materials = nullptr; }
+    PackedMaterials(const PackedMaterials&) = delete;
+    PackedMaterials& operator=(const PackedMaterials&) = delete;
+};
 
 // The dialect's vec3 in this variant: glm::vec3, or glm::dvec3 in the double-precision build
 // (host/studies/accuracy_double_variant.cpp).
@@ -34,41 +49,45 @@ using Vector3 = decltype(::openpbr::OPENPBR_CPP_VARIANT_NAMESPACE::OpenPBR_Diffu
 
 inline Vector3 to_vec3(const float* v) { return Vector3(v[0], v[1], v[2]); }
 
-inline void eval(const std::vector<AccuracyMaterial>& materials, const std::vector<AccuracyQuery>& queries, float* out)
+inline void store(const Vector3& value, float* out)
+{
+    out[0] = float(value.x);
+    out[1] = float(value.y);
+    out[2] = float(value.z);
+}
+
+inline void eval(const float* materials, const std::vector<AccuracyQuery>& queries, float* out)
 {
     using namespace ::openpbr::OPENPBR_CPP_VARIANT_NAMESPACE;
+    const PackedMaterials scope(materials);
     for (std::size_t i = 0; i < queries.size(); ++i)
     {
         const AccuracyQuery& query = queries[i];
-        const OpenPBR_PreparedBsdf bsdf = openpbr_prepare(resolve(materials[query.material]), to_vec3(query.view));
+        const OpenPBR_PreparedBsdf bsdf = openpbr_prepare(accuracy_unpack_material(query.material), to_vec3(query.view));
         const OpenPBR_DiffuseSpecular value = openpbr_eval(bsdf, to_vec3(query.light));
-        const Vector3 sum = value.diffuse + value.specular;
-        out[3 * i] = float(sum.x);
-        out[3 * i + 1] = float(sum.y);
-        out[3 * i + 2] = float(sum.z);
+        store(value.diffuse + value.specular, out + 3 * i);
     }
 }
 
-inline void sample(const std::vector<AccuracyMaterial>& materials, const std::vector<AccuracyQuery>& queries, float* out)
+inline void sample(const float* materials, const std::vector<AccuracyQuery>& queries, float* out)
 {
     using namespace ::openpbr::OPENPBR_CPP_VARIANT_NAMESPACE;
+    const PackedMaterials scope(materials);
     for (std::size_t i = 0; i < queries.size(); ++i)
     {
         const AccuracyQuery& query = queries[i];
-        const OpenPBR_PreparedBsdf bsdf = openpbr_prepare(resolve(materials[query.material]), to_vec3(query.view));
+        const OpenPBR_PreparedBsdf bsdf = openpbr_prepare(accuracy_unpack_material(query.material), to_vec3(query.view));
         const OpenPBR_BsdfSample drawn = openpbr_sample(bsdf, to_vec3(query.u));
-        const Vector3 weight = drawn.pdf > 0.0f ? drawn.weight.diffuse + drawn.weight.specular : Vector3(0.0f);
-        out[3 * i] = float(weight.x);
-        out[3 * i + 1] = float(weight.y);
-        out[3 * i + 2] = float(weight.z);
+        store(drawn.pdf > 0.0f ? drawn.weight.diffuse + drawn.weight.specular : Vector3(0.0f), out + 3 * i);
     }
 }
 
-inline AccuracyAlbedo albedo(const AccuracyMaterial& material, float mu, std::uint32_t samples, std::uint64_t seed)
+inline AccuracyAlbedo albedo(const float* material, float mu, std::uint32_t samples, std::uint64_t seed)
 {
     using namespace ::openpbr::OPENPBR_CPP_VARIANT_NAMESPACE;
+    const PackedMaterials scope(material);
     const Vector3 view(std::sqrt(std::max(0.0f, 1.0f - mu * mu)), 0.0f, mu);
-    const OpenPBR_PreparedBsdf bsdf = openpbr_prepare(resolve(material), view);
+    const OpenPBR_PreparedBsdf bsdf = openpbr_prepare(accuracy_unpack_material(0u), view);
     // The study's point set (ShiftedR3Sequence): low discrepancy, per-sample variance kept.
     const ShiftedR3Sequence sequence(seed);
     const DirectionalAlbedo estimate = estimate_directional_albedo(samples, [&](const std::uint64_t s) {
@@ -86,6 +105,44 @@ inline AccuracyAlbedo albedo(const AccuracyMaterial& material, float mu, std::ui
     return result;
 }
 
+// The film on the dielectric base (F_film of base_ior / outside_ior) and on a gold-coloured F82
+// metal, as openpbr_prepare builds a filmed base's Fresnel factors.
+struct FilmedBases
+{
+    ::openpbr::OPENPBR_CPP_VARIANT_NAMESPACE::OpenPBR_Fresnel dielectric;
+    ::openpbr::OPENPBR_CPP_VARIANT_NAMESPACE::OpenPBR_Fresnel metal;
+};
+
+inline FilmedBases filmed_bases(const AccuracyFilm& film)
+{
+    using namespace ::openpbr::OPENPBR_CPP_VARIANT_NAMESPACE;
+    FilmedBases bases;
+    bases.dielectric =
+        openpbr_add_thin_film(openpbr_make_dielectric_fresnel(film.base_ior / film.outside_ior, Vector3(1.0f)), 1.0f,
+                              film.thickness_um, film.film_ior, film.outside_ior);
+    bases.metal = openpbr_add_thin_film(openpbr_make_f82_fresnel(Vector3(1.0f, 0.78f, 0.34f), Vector3(1.0f), Vector3(1.0f)),
+                                        1.0f, film.thickness_um, film.film_ior, film.outside_ior);
+    return bases;
+}
+
+inline void film_estimate(const AccuracyFilm& film, float* out)
+{
+    using namespace ::openpbr::OPENPBR_CPP_VARIANT_NAMESPACE;
+    const FilmedBases bases = filmed_bases(film);
+    const float cosine = film.view_cosine;
+    const Vector3 view(std::sqrt(std::max(0.0f, 1.0f - cosine * cosine)), 0.0f, cosine);
+    const OpenPBR_FresnelPair estimate =
+        openpbr_base_film_estimate(bases.dielectric, true, bases.metal, true, view, openpbr_ggx_alpha(film.roughness, 0.0f));
+    store(estimate.first, out);
+    store(estimate.second, out + 3);
+}
+
+inline void film_reflectance(const AccuracyFilm& film, float cosine, float* out)
+{
+    using namespace ::openpbr::OPENPBR_CPP_VARIANT_NAMESPACE;
+    store(openpbr_fresnel_evaluate(filmed_bases(film).dielectric, cosine), out);
+}
+
 }  // namespace OPENPBR_CPP_VARIANT_NAMESPACE
 
 // A buffer-mode variant reads its table through a pointer that the study sets before running it
@@ -96,14 +153,17 @@ void accuracy_set_half_table(const std::uint16_t* halves) { ::openpbr::openpbr_l
 void accuracy_set_buffer_table(const float* values) { ::openpbr::openpbr_lut_data = values; }
 #endif
 
-BsdfVariant OPENPBR_ACCURACY_VARIANT_FACTORY(const std::string& knob, const std::string& setting)
+BsdfVariant OPENPBR_ACCURACY_VARIANT_FACTORY(const std::string& name, const std::string& knob, const std::string& setting)
 {
     BsdfVariant variant;
+    variant.name = name;
     variant.knob = knob;
     variant.setting = setting;
     variant.eval = &OPENPBR_CPP_VARIANT_NAMESPACE::eval;
     variant.sample = &OPENPBR_CPP_VARIANT_NAMESPACE::sample;
     variant.albedo = &OPENPBR_CPP_VARIANT_NAMESPACE::albedo;
+    variant.film_estimate = &OPENPBR_CPP_VARIANT_NAMESPACE::film_estimate;
+    variant.film_reflectance = &OPENPBR_CPP_VARIANT_NAMESPACE::film_reflectance;
     return variant;
 }
 

@@ -8,17 +8,17 @@
 #
 # openpbr_accuracy_variant(<name> KNOB <label> SETTING <label> [DEFINES <K=V>...]
 #                          [CPP_DEFINES <K=V>...] [TABLE <AccuracyTable>] [FACTORY <name>]
-#                          [CPU_ONLY] [BIT_IDENTICAL_TO_SHIPPED] [DOUBLE_REFERENCE])
+#                          [CPU_ONLY] [BIT_IDENTICAL_TO_SHIPPED] [REFERENCE])
 #   DEFINES      the knob's macros, for the C++ build and the Slang conformance kernel alike,
 #                e.g. OPENPBR_VNDF_METHOD=OPENPBR_VNDF_METHOD_BOUNDED.
 #   CPP_DEFINES  macros for the C++ build only (how the CPU reads a table of another size or
 #                storage), e.g. OPENPBR_LUT_MODE_TEXTURE=1.
-#   TABLE        the compensation table the Vulkan kernel binds (default shipped).
-#   FACTORY      the build of another entry, relabelled, instead of a translation unit of its
-#                own (e.g. the shipped build as the "precision" row); `double` is the
-#                double-precision build (host/studies/accuracy_double_variant.cpp).
-#   CPU_ONLY     no Vulkan row (the Vulkan kernel of this setting is another row's).
-#   BIT_IDENTICAL_TO_SHIPPED, DOUBLE_REFERENCE: the flags of BsdfVariant (accuracy_variants.h).
+#   TABLE        the compensation table the setting reads (AccuracyTable; default shipped).
+#   FACTORY      a build made elsewhere instead of a translation unit of its own: `double` is
+#                the double-precision build (host/studies/accuracy_double_variant.cpp).
+#   CPU_ONLY     no GPU kernel of its own (a C++ storage mode, the double build, the
+#                reference table): no lavapipe or WebGPU time.
+#   BIT_IDENTICAL_TO_SHIPPED, REFERENCE: the flags of BsdfVariant (accuracy_variants.h).
 set(OPENPBR_ACCURACY_VARIANT_DIR ${CMAKE_BINARY_DIR}/accuracy_variants)
 set(OPENPBR_ACCURACY_VARIANT_SOURCES)
 set(OPENPBR_ACCURACY_VARIANT_FACTORIES)
@@ -54,7 +54,7 @@ function(openpbr_define_lines out)
 endfunction()
 
 function(openpbr_accuracy_variant name)
-  cmake_parse_arguments(ARG "CPU_ONLY;BIT_IDENTICAL_TO_SHIPPED;DOUBLE_REFERENCE" "KNOB;SETTING;TABLE;FACTORY"
+  cmake_parse_arguments(ARG "CPU_ONLY;BIT_IDENTICAL_TO_SHIPPED;REFERENCE" "KNOB;SETTING;TABLE;FACTORY"
                         "DEFINES;CPP_DEFINES" ${ARGN})
   if(NOT ARG_TABLE)
     set(ARG_TABLE shipped)
@@ -80,17 +80,17 @@ function(openpbr_accuracy_variant name)
     endif()
     string(APPEND slang_defines "\"${define}\"")
   endforeach()
-  set(row "    {\n        BsdfVariant variant = ${factory}(\"${ARG_KNOB}\", \"${ARG_SETTING}\");\n")
+  set(row "    {\n        BsdfVariant variant = ${factory}(\"${name}\", \"${ARG_KNOB}\", \"${ARG_SETTING}\");\n")
   string(APPEND row "        variant.slang_defines = {${slang_defines}};\n")
   string(APPEND row "        variant.table = AccuracyTable::${ARG_TABLE};\n")
   if(ARG_CPU_ONLY)
-    string(APPEND row "        variant.on_vulkan = false;\n")
+    string(APPEND row "        variant.on_gpu = false;\n")
   endif()
   if(ARG_BIT_IDENTICAL_TO_SHIPPED)
     string(APPEND row "        variant.bit_identical_to_shipped = true;\n")
   endif()
-  if(ARG_DOUBLE_REFERENCE)
-    string(APPEND row "        variant.double_reference = true;\n")
+  if(ARG_REFERENCE)
+    string(APPEND row "        variant.reference = true;\n")
   endif()
   string(APPEND row "        variants.push_back(std::move(variant));\n    }\n")
   set(OPENPBR_ACCURACY_VARIANT_ROWS "${OPENPBR_ACCURACY_VARIANT_ROWS}${row}" PARENT_SCOPE)
@@ -100,8 +100,15 @@ function(openpbr_accuracy_variant name)
   endif()
 endfunction()
 
-# ---- The list: the shipped build first, then one row per knob setting ----
-openpbr_accuracy_variant(shipped KNOB "shipped" SETTING "tables 32 (array), spherical caps, full thin film")
+# ---- The list: the shipped build first, then each knob's settings ----
+# The shipped build is every knob's shipped setting (docs/accuracy-vs-time.md names it per knob).
+openpbr_accuracy_variant(shipped KNOB "shipped" SETTING "shipped defaults")
+# Energy compensation: its form and table 0's resolution (shipped: 128 x 128), against the same
+# model reading E_ggx from a 256 x 256 table integrated in double (REFERENCE).
+openpbr_accuracy_variant(compensation_exact KNOB "compensation" SETTING "exact E_ggx (256x256 quadrature table)"
+  TABLE reference CPU_ONLY REFERENCE
+  CPP_DEFINES OPENPBR_LUT_2D_SIZE=256 OPENPBR_LUT_MODE_TEXTURE=1
+              "OPENPBR_LUT_FETCH(index)=::openpbr::host::accuracy_lut_values_reference[index]" OPENPBR_FUZZ_LTC_MODE_ARRAY=1)
 openpbr_accuracy_variant(compensation_none KNOB "compensation" SETTING "none"
   DEFINES OPENPBR_COMPENSATION_MODE=OPENPBR_COMPENSATION_NONE)
 openpbr_accuracy_variant(compensation_analytic KNOB "compensation" SETTING "analytic fit (15-term polynomial)"
@@ -114,11 +121,13 @@ openpbr_accuracy_variant(table_64 KNOB "compensation" SETTING "table 64x64" TABL
   DEFINES OPENPBR_LUT_2D_SIZE=64
   CPP_DEFINES OPENPBR_LUT_MODE_TEXTURE=1 "OPENPBR_LUT_FETCH(index)=::openpbr::host::accuracy_lut_values_64[index]"
               OPENPBR_FUZZ_LTC_MODE_ARRAY=1)
+# Table storage, against the shipped float32 values.
 openpbr_accuracy_variant(table_buffer KNOB "table storage" SETTING "float32 buffer" CPU_ONLY BIT_IDENTICAL_TO_SHIPPED
   CPP_DEFINES OPENPBR_LUT_MODE_BUFFER=1 OPENPBR_FUZZ_LTC_MODE_ARRAY=1)
 openpbr_accuracy_variant(table_half KNOB "table storage" SETTING "16-bit values (buffer)" TABLE half
   DEFINES OPENPBR_LUT_16BIT=1
   CPP_DEFINES OPENPBR_LUT_MODE_BUFFER=1 OPENPBR_FUZZ_LTC_MODE_ARRAY=1)
+# Fast-math hooks, against precise math (the shipped build).
 openpbr_accuracy_variant(fast_rcp_sqrt KNOB "fast math" SETTING "OPENPBR_FAST_RCP_SQRT"
   DEFINES OPENPBR_FAST_RCP_SQRT=1)
 openpbr_accuracy_variant(fast_sqrt KNOB "fast math" SETTING "OPENPBR_FAST_SQRT + RCP_SQRT"
@@ -127,32 +136,32 @@ openpbr_accuracy_variant(fast_normalize KNOB "fast math" SETTING "OPENPBR_FAST_N
   DEFINES OPENPBR_FAST_NORMALIZE=1 OPENPBR_FAST_RCP_SQRT=1)
 openpbr_accuracy_variant(fast_all KNOB "fast math" SETTING "all hooks"
   DEFINES OPENPBR_FAST_RCP_SQRT=1 OPENPBR_FAST_SQRT=1 OPENPBR_FAST_NORMALIZE=1)
+# Visible-normal sampling (shipped: spherical caps): a variance knob, by efficiency.
 openpbr_accuracy_variant(vndf_hemisphere KNOB "vndf sampling" SETTING "Heitz 2018 hemisphere"
   DEFINES OPENPBR_VNDF_METHOD=OPENPBR_VNDF_METHOD_HEMISPHERE)
 openpbr_accuracy_variant(vndf_bounded KNOB "vndf sampling" SETTING "bounded (Eto & Tokuyoshi 2023)"
   DEFINES OPENPBR_VNDF_METHOD=OPENPBR_VNDF_METHOD_BOUNDED)
-openpbr_accuracy_variant(thin_film_fast KNOB "thin film" SETTING "fast thin film approximation"
+# The thin film's model, against the full spectral film (shipped).
+openpbr_accuracy_variant(thin_film_fast KNOB "thin film" SETTING "fast approximation (three Gaussians)"
   DEFINES OPENPBR_THIN_FILM_MODEL=OPENPBR_THIN_FILM_MODEL_FAST)
-# The thin film's albedo estimate (openpbr_base_film_estimate): the film at the view only (what
-# most implementations do), and coarse cuts (two halves for every lobe without a critical
-# cosine that is not narrow, no very wide lobe in eighths, no tail on its own; past one the
-# quartiles, 12 thresholds in w and 4 evanescent segments, no sliver merged;
-# docs/thin-film-estimate.md). CPU only: the estimate runs in
-# prepare, and its furnace row is a CPU measurement.
+# The thin film's albedo estimate (openpbr_base_film_estimate), against the dense lobe average of
+# docs/thin-film-estimate.md: the film at the view only (what most implementations do), and
+# coarse cuts (two halves for every lobe without a critical cosine that is not narrow, no very
+# wide lobe in eighths, no tail on its own; past one the quartiles, 12 thresholds in w and 4
+# evanescent segments, no sliver merged). CPU only: the estimate runs in prepare.
 openpbr_accuracy_variant(film_estimate_at_view KNOB "film estimate" SETTING "film at the view only" CPU_ONLY
   DEFINES OPENPBR_FILM_ESTIMATE_METHOD=OPENPBR_FILM_ESTIMATE_AT_VIEW)
-openpbr_accuracy_variant(film_estimate_quartile_cuts KNOB "film estimate" SETTING "coarse cuts (halves; quartiles past a critical cosine)"
+openpbr_accuracy_variant(film_estimate_quartile_cuts KNOB "film estimate" SETTING "coarse cuts (halves, quartiles past a critical cosine)"
   CPU_ONLY DEFINES OPENPBR_FILM_ESTIMATE_CRITICAL_SEGMENTS=12 OPENPBR_FILM_ESTIMATE_EVANESCENT_SEGMENTS=4
   OPENPBR_FILM_ESTIMATE_SHARE_SEGMENTS=4 OPENPBR_FILM_ESTIMATE_WIDE_WIDTH=3.0f OPENPBR_FILM_ESTIMATE_MIN_SHARE=0.0f
   OPENPBR_FILM_ESTIMATE_VERY_WIDE_RANGE=3.0f OPENPBR_FILM_ESTIMATE_TAIL_VIEW=0.0f)
-# The precision knob: the shipped build once more under its own name, and the double build.
-openpbr_accuracy_variant(single_precision KNOB "precision" SETTING "C++ float (shipped)" FACTORY shipped CPU_ONLY)
-openpbr_accuracy_variant(double_precision KNOB "precision" SETTING "C++ double" FACTORY double CPU_ONLY DOUBLE_REFERENCE)
+# Precision: the double-precision build, the reference of the shipped float build.
+openpbr_accuracy_variant(double_precision KNOB "precision" SETTING "C++ double (reference)" FACTORY double CPU_ONLY REFERENCE)
 
 # bsdf_variants(): the rows above, in order.
 set(factory_declarations "")
 foreach(factory IN LISTS OPENPBR_ACCURACY_VARIANT_FACTORIES)
-  string(APPEND factory_declarations "BsdfVariant ${factory}(const std::string& knob, const std::string& setting);\n")
+  string(APPEND factory_declarations "BsdfVariant ${factory}(const std::string& name, const std::string& knob, const std::string& setting);\n")
 endforeach()
 set(OPENPBR_ACCURACY_VARIANT_LIST ${OPENPBR_ACCURACY_VARIANT_DIR}/accuracy_variant_list.cpp)
 string(CONCAT list_text

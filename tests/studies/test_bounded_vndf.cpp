@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "host/scene/material_packing.h"
 #include "host/studies/accuracy_variants.h"
 #include "slang/openpbr.h"
 
@@ -120,13 +121,14 @@ TEST_P(BoundedBsdf, AlbedoMatchesShippedSampler)
         }
     }
     ASSERT_NE(bounded, nullptr);
-    openpbr::host::AccuracyMaterial material;
-    material.base_metalness = 1.0f;
-    material.base_color[0] = material.base_color[1] = material.base_color[2] = 0.9f;
-    material.specular_roughness = std::sqrt(c.alpha);
+    openpbr::host::Material material = openpbr::host::default_material();
+    material.inputs.base_metalness = 1.0f;
+    material.inputs.base_color = glm::vec3(0.9f);
+    material.inputs.specular_roughness = std::sqrt(c.alpha);
+    const std::vector<float> packed = openpbr::host::pack_materials({material});
     const std::uint32_t samples = 1u << 17;
-    const auto reference = variants.front().albedo(material, c.mu, samples, 3);
-    const auto tested = bounded->albedo(material, c.mu, samples, 4);
+    const auto reference = variants.front().albedo(packed.data(), c.mu, samples, 3);
+    const auto tested = bounded->albedo(packed.data(), c.mu, samples, 4);
     const double error = std::sqrt((reference.variance + tested.variance) / samples);
     EXPECT_NEAR(tested.mean[0], reference.mean[0], 5.0 * error + 1e-4);
     // Bounded sampling wastes fewer samples below the horizon, so its variance is not larger.
