@@ -22,7 +22,7 @@
 
 OPENPBR_NAMESPACE_BEGIN
 
-struct OpenPBR_DiffuseLobe
+struct OpenPBR_DiffuseLobe OPENPBR_DIFFERENTIABLE
 {
     vec3 single_scatter_a;  // weight * rho * A / pi
     vec3 single_scatter_b;  // weight * rho * B / pi

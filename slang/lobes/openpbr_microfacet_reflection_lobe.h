@@ -24,7 +24,7 @@
 
 OPENPBR_NAMESPACE_BEGIN
 
-struct OpenPBR_MicrofacetReflectionLobe
+struct OpenPBR_MicrofacetReflectionLobe OPENPBR_DIFFERENTIABLE
 {
     vec3 weight;               // layering weight times energy compensation
     vec2 alpha;                // (alpha_t, alpha_b)
@@ -183,7 +183,7 @@ OPENPBR_FUNC OpenPBR_LobeSample openpbr_microfacet_reflection_lobe_sample(OPENPB
 
 // The single-scattering albedos of one GGX lobe that compensation and layering read, for its
 // view (computed once in prepare).
-struct OpenPBR_GgxLobeAlbedo
+struct OpenPBR_GgxLobeAlbedo OPENPBR_DIFFERENTIABLE
 {
     // Alpha of the isotropic look-ups of E_T0 and E_RT: the root mean square of
     // (alpha_t, alpha_b), which OpenPBR's anisotropy mapping keeps equal to r^2 (spec
@@ -314,13 +314,13 @@ OPENPBR_FUNC float openpbr_ggx_lobe_dielectric_reflection_albedo(float mu, float
 //    quarters, and one whose interquartile range is at least
 //    OPENPBR_FILM_ESTIMATE_VERY_WIDE_RANGE in c itself (alpha 0.1 below view cos 0.04, 0.2
 //    below about 0.35, 0.4 below about 0.7) OPENPBR_FILM_ESTIMATE_VERY_WIDE_SEGMENTS eighths.
-//    The upper tail (docs/thin-film-estimate.md "The upper tail on its own"): a GGX lobe's long upper tail (at view cos 0.1 and alpha 0.013
-//    the middle three quarters of its light lie between c = 0.089 and 0.110, the last eighth
-//    above 0.120, reaching far up) pulled the upper half's mean to where the film's change bends, the largest remaining
-//    errors of the dense reference without a critical cosine (0.034 high, 0.020 low); the last eighth as a segment of its
-//    own, evaluated at its median, cut them to 0.0087 / 0.0085. Every cut and every segment's quartiles are even nodes, so
-//    the shares, means and spreads are node reads (the cut at the lobe's mean before took a search and the cell model: the
-//    tail's evaluation is paid by what that saved). A narrow lobe there, whose interquartile range of c is below
+//    The upper tail (docs/thin-film-estimate.md "The upper tail on its own"): a GGX lobe's long upper tail (at view cos 0.1
+//    and alpha 0.013 the middle three quarters of its light lie between c = 0.089 and 0.110, the last eighth above 0.120,
+//    reaching far up) pulled the upper half's mean to where the film's change bends, the largest remaining errors of the
+//    dense reference without a critical cosine (0.034 high, 0.020 low); the last eighth as a segment of its own, evaluated
+//    at its median, cut them to 0.0087 / 0.0085. Every cut and every segment's quartiles are even nodes, so the shares,
+//    means and spreads are node reads (the cut at the lobe's mean before took a search and the cell model: the tail's
+//    evaluation is paid by what that saved). A narrow lobe there, whose interquartile range of c is below
 //    OPENPBR_FILM_ESTIMATE_NARROW_WIDTH times its median, is one segment evaluated at its median (one film evaluation
 //    instead of two, as the mirror limit's one at the view): the film's amplitudes and the plain Fresnel factor change on
 //    the scale of c itself (their derivatives grow like 1 / c towards grazing), so a lobe narrow against its median cosine
@@ -456,6 +456,10 @@ OPENPBR_FUNC float openpbr_ggx_lobe_dielectric_reflection_albedo(float mu, float
     (OPENPBR_FILM_ESTIMATE_CRITICAL_CUTS > OPENPBR_FILM_ESTIMATE_VERY_WIDE_SEGMENTS + 1 \
          ? OPENPBR_FILM_ESTIMATE_CRITICAL_CUTS                                          \
          : OPENPBR_FILM_ESTIMATE_VERY_WIDE_SEGMENTS + 1)
+// The steps of the merge of thresholds and share bounds in openpbr_base_film_estimate: each but
+// the last advances next_share (at most SHARE_SEGMENTS times) or next_threshold (at most
+// CRITICAL_SEGMENTS - 1 times).
+#define OPENPBR_FILM_ESTIMATE_MERGE_STEPS (OPENPBR_FILM_ESTIMATE_SHARE_SEGMENTS + OPENPBR_FILM_ESTIMATE_CRITICAL_SEGMENTS)
 // The step of table 5's even nodes between equal shares (8 of 32 for quarters).
 #define OPENPBR_FILM_ESTIMATE_SHARE_STEP ((OPENPBR_LUT_FILM_CORE_SIZE - 1) / OPENPBR_FILM_ESTIMATE_SHARE_SEGMENTS)
 
@@ -511,6 +515,7 @@ OPENPBR_FUNC vec2 openpbr_film_segment_point(OPENPBR_IN(OpenPBR_FilmLobeTable) t
     vec2 quartile_paths = vec2(0.0f);
     float median = 0.0f;
     const int look_ups = at_median ? 3 : 2;
+    OPENPBR_MAX_ITERS(3)  // the quartiles and the median
     for (int look_up = 0; look_up < look_ups; ++look_up)
     {
         // p = 0.25, 0.75, 0.5 of the segment's share.
@@ -614,6 +619,7 @@ OPENPBR_FUNC OpenPBR_FresnelPair openpbr_base_film_estimate(OPENPBR_IN(OpenPBR_F
                              : wide    ? OPENPBR_FILM_ESTIMATE_WIDE_SEGMENTS
                                        : OPENPBR_FILM_ESTIMATE_PLAIN_SEGMENTS;
         const int step = (OPENPBR_LUT_FILM_CORE_SIZE - 1) / segments;
+        OPENPBR_MAX_ITERS(OPENPBR_FILM_ESTIMATE_VERY_WIDE_SEGMENTS)  // segments - 1 cuts, at most the very wide lobe's
         for (int segment = 1; segment < segments; ++segment)
         {
             cuts[cut_count] = float(segment * step);
@@ -656,6 +662,7 @@ OPENPBR_FUNC OpenPBR_FresnelPair openpbr_base_film_estimate(OPENPBR_IN(OpenPBR_F
         // The first step reads the first bound (below every cut, -1 is no cut): one read site.
         int next_share = 0;
         float share_bound = -1.0f;
+        OPENPBR_MAX_ITERS(OPENPBR_FILM_ESTIMATE_MERGE_STEPS)
         for (;;)
         {
             // Bounds at or above 1 (past every threshold) are not cuts.
@@ -693,6 +700,7 @@ OPENPBR_FUNC OpenPBR_FresnelPair openpbr_base_film_estimate(OPENPBR_IN(OpenPBR_F
     // call site, both bases in each evaluation.
     vec2 start = vec2(0.0f);
     int start_node = 0;
+    OPENPBR_MAX_ITERS(OPENPBR_FILM_ESTIMATE_MAX_SEGMENTS)  // cut_count fills cuts[], that many at most
     for (int index = 0; index < cut_count; ++index)
     {
         const float cut = cuts[index];

@@ -68,7 +68,7 @@ OPENPBR_FUNC vec3 openpbr_fresnel_f82(vec3 f0, vec3 f82_coefficient, float cos_t
 #define OPENPBR_FRESNEL_F82 1u
 #define OPENPBR_FRESNEL_NONE 2u  // F = 1 (times tint): thin-walled transmission, table generation
 
-struct OpenPBR_Fresnel
+struct OpenPBR_Fresnel OPENPBR_DIFFERENTIABLE
 {
     uint kind;             // OPENPBR_FRESNEL_DIELECTRIC, _F82 or _NONE
     float eta;             // dielectric: n_transmitted / n_incident, e.g. 1.5
@@ -181,7 +181,7 @@ OPENPBR_FUNC vec3 openpbr_fresnel_evaluate(OPENPBR_IN(OpenPBR_Fresnel) fresnel, 
 // under the same film): equal to two openpbr_fresnel_evaluate calls, with the film's spectral
 // harmonics computed once for both (openpbr_thin_film_model_bases). An inactive factor
 // is 0.
-struct OpenPBR_FresnelPair
+struct OpenPBR_FresnelPair OPENPBR_DIFFERENTIABLE
 {
     vec3 first;
     vec3 second;
