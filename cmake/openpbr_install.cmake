@@ -61,7 +61,7 @@ configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/openpbrConfig.cmake.in
   ${PROJECT_BINARY_DIR}/openpbrConfig.cmake
   INSTALL_DESTINATION ${OPENPBR_INSTALL_CMAKEDIR}
   PATH_VARS OPENPBR_INSTALL_INCLUDEDIR)
-# SameMajorVersion: a request for 1.0 or 1.1 accepts this 1.1.0, a request for 2.0 does not.
+# SameMajorVersion: a request for 1.0 or 1.1 accepts this 1.1.1, a request for 2.0 does not.
 write_basic_package_version_file(${PROJECT_BINARY_DIR}/openpbrConfigVersion.cmake
   COMPATIBILITY SameMajorVersion)
 install(FILES ${PROJECT_BINARY_DIR}/openpbrConfig.cmake ${PROJECT_BINARY_DIR}/openpbrConfigVersion.cmake

@@ -182,7 +182,7 @@ done
     printf '  %-22s %-7s exit %3d  %4d s\n' "${step_names[$index]}" "$verdict" "$status" "${step_seconds[$index]}"
   done
   echo "conformance per path (per-kind metric verdict, device ns/query):"
-  grep -E "^  [a-z-]+: (passes|FAILS|not executed)|device time|^      [a-z.]+ (p99.9|max) of error" "$results/conformance.txt" 2>/dev/null | sed 's/^/  /'
+  grep -E "^  [a-z-]+: (passes|FAILS|not executed)|device time|^      [a-z.]+ (p99.9|max) of error|^verdict: " "$results/conformance.txt" 2>/dev/null | sed 's/^/  /'
   echo "bench gpu:"
   grep -E "device:|^  [a-z_+]+ \(" "$results/bench-gpu.txt" 2>/dev/null | sed 's/^/  /'
   echo "gallery:"

@@ -23,13 +23,14 @@ step_times_init
 build_targets=("$@")
 
 # Debian packages the build and the tests use, e.g. libglm-dev for the C++ backend, chromium
-# (headless, with its SwiftShader WebGPU adapter) for the browser viewer's test.
+# (headless, with its SwiftShader WebGPU adapter) for the browser viewer's test, universal-ctags
+# for the function length check (scripts/check-function-length.sh).
 packages=(
   g++ clang cmake ninja-build git nodejs npm
   libglm-dev libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers vulkan-tools
   glslang-tools spirv-tools libpugixml-dev libcli11-dev nlohmann-json3-dev libstb-dev
   libtbb-dev libgtest-dev libgmock-dev libbenchmark-dev python3 python3-matplotlib
-  libclang-rt-14-dev clang-format ccache
+  libclang-rt-14-dev clang-format ccache universal-ctags
   chromium
 )
 # chromium: its SwiftShader Vulkan driver (/usr/lib/chromium/vk_swiftshader_icd.json) is the

@@ -6,7 +6,9 @@
 # unit tests under ASan + UBSan (scripts/ci_sanitizers.sh) and in Clang's Release build
 # (scripts/ci_clang_release.sh), and the format check of the C, C++ and CUDA sources against
 # .clang-format (scripts/format-check.sh) with the word check of tracked text
-# (scripts/check-words.sh: no names of work rounds, no tracker numbers). Every step runs even when an earlier one fails; the
+# (scripts/check-words.sh: no names of work rounds, no tracker numbers), the link check of the
+# Markdown (scripts/check-links.py) and the function length check (scripts/check-function-length.sh:
+# none over 150 lines, 200 in slang/). Every step runs even when an earlier one fails; the
 # script fails if any did. OPENPBR_SKIP_CONSUMERS=1, OPENPBR_SKIP_SANITIZERS=1,
 # OPENPBR_SKIP_CLANG_RELEASE=1, OPENPBR_SKIP_FUZZ=1 and OPENPBR_SKIP_FORMAT=1 leave those steps
 # out, e.g. for a quick local run. Prints a table of each step's wall and CPU time at the end
@@ -55,6 +57,8 @@ rm -rf "$side_step_logs"
 if [[ "${OPENPBR_SKIP_FORMAT:-0}" != 1 ]]; then
   step_run "format-check" step "$repo_root/scripts/format-check.sh" || failed+=(format-check)
   step_run "check-words" step "$repo_root/scripts/check-words.sh" || failed+=(check-words)
+  step_run "check-links" step "$repo_root/scripts/check-links.py" || failed+=(check-links)
+  step_run "check-function-length" step "$repo_root/scripts/check-function-length.sh" || failed+=(check-function-length)
 fi
 if ((${#failed[@]})); then
   # A fuzz finding again at the end, where a truncated CI log still shows it.

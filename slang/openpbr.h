@@ -1,4 +1,4 @@
-// OpenPBR 1.1 surface BSDF, single source. Include this one header from C++, GLSL, CUDA or
+// OpenPBR 1.1.1 surface BSDF, single source. Include this one header from C++, GLSL, CUDA or
 // Metal; Slang users `import openpbr;` (slang/openpbr.slang). See README.md.
 #ifndef OPENPBR_H
 #define OPENPBR_H
@@ -16,7 +16,7 @@
 #endif
 #include "../interop/openpbr_interop.h"
 #include "openpbr_bsdf.h"
-// The established API form (README "Two API forms"), implemented through openpbr_bsdf.h.
+// The established API form (docs/api.md "The established API form"), implemented through openpbr_bsdf.h.
 #include "openpbr_established_api.h"
 
 #endif

@@ -1,4 +1,4 @@
-// The OpenPBR 1.1 surface BSDF: prepare, eval, sample, pdf.
+// The OpenPBR 1.1.1 surface BSDF: prepare, eval, sample, pdf.
 //
 // Layering follows the specification's reduction to a mixture of lobes (spec "Reduction to a
 // mixture of lobes", docs/spec-notes.md 2.3) with albedo scaling:
@@ -48,8 +48,10 @@ struct OpenPBR_BsdfSample OPENPBR_DIFFERENTIABLE
 };
 
 // Wavelengths (nm) the three channels stand for when the caller passes none: the dominant
-// wavelengths of the Rec.709 primaries, e.g. for dispersion in an RGB renderer.
-#define OPENPBR_DEFAULT_RGB_WAVELENGTHS_NM vec3(612.0f, 549.0f, 465.0f)
+// wavelengths of the working space's primaries (slang/openpbr_working_space.h; e.g.
+// (611.4, 549.1, 464.2) for linear Rec.709, (628.8, 532.9, 467.2) for ACEScg), e.g. for
+// dispersion in an RGB renderer.
+#define OPENPBR_DEFAULT_RGB_WAVELENGTHS_NM OPENPBR_WORKING_SPACE_DOMINANT_WAVELENGTHS_NM
 
 // The same as a function, for callers that see the library through a module (Slang `import
 // openpbr;` exports declarations, not macros), e.g. to pass an exterior IOR to openpbr_prepare.
@@ -142,7 +144,7 @@ OPENPBR_FUNC vec3 openpbr_dispersive_ior(float ior_d, float abbe_number, float d
     return clamp(vec3(a) + b / (lambda * lambda), vec3(OPENPBR_IOR_MIN), vec3(OPENPBR_IOR_MAX));
 }
 
-// The inputs every prepare step reads: the input contract (README "Input contract"), then the
+// The inputs every prepare step reads: the input contract (docs/api.md "Input contract"), then the
 // feature toggles (slang/openpbr_features.h); run once per prepare.
 OPENPBR_FUNC OpenPBR_ResolvedInputs openpbr_prepare_inputs(OPENPBR_IN(OpenPBR_ResolvedInputs) raw_inputs)
 {
@@ -636,8 +638,8 @@ OPENPBR_FUNC void openpbr_select_lobes(OPENPBR_IN(OpenPBR_ResolvedInputs) inputs
 // pdf and sample never look at. With a feature toggled off its weight is the constant 0, so the
 // compiler removes the set-up altogether. The emission is prepared apart
 // (openpbr_prepare_emission_of).
-// `inputs` have passed openpbr_prepare_inputs. exterior_ior: the absolute IOR of the medium the view is in (README "Exterior
-// medium"), already passed through openpbr_contract_exterior_ior. `path_throughput` only steers lobe selection
+// `inputs` have passed openpbr_prepare_inputs. exterior_ior: the absolute IOR of the medium the view is in (docs/api.md
+// "Exterior medium"), already passed through openpbr_contract_exterior_ior. `path_throughput` only steers lobe selection
 // (openpbr_selection_channel_weights); white gives the unweighted probabilities.
 OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare_lobes_of(OPENPBR_IN(OpenPBR_ResolvedInputs) inputs, vec3 view_world,
                                                            vec3 rgb_wavelengths_nm, float exterior_ior, vec3 path_throughput)

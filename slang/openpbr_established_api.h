@@ -2,8 +2,8 @@
 // interface of the OpenPBR BSDF library renderers adopted first), each implemented through this
 // project's own functions, so code written against that interface compiles here by changing
 // the include path. Nothing here adds physics: every function forwards to, or rearranges the
-// results of, the project-form API of openpbr_bsdf.h and openpbr_volume.h (README "Two API
-// forms").
+// results of, the project-form API of openpbr_bsdf.h and openpbr_volume.h (docs/api.md "The
+// established API form").
 //
 //   OpenPBR_PreparedBsdf prepared = openpbr_prepare(inputs, path_throughput, OpenPBR_BaseRgbWavelengths_nm,
 //                                                   OpenPBR_VacuumIor, view_direction);
@@ -26,7 +26,7 @@ OPENPBR_NAMESPACE_BEGIN
 // Constants.
 
 // The wavelengths (nm) the R, G, B channels stand for in an RGB renderer: the dominant
-// wavelengths of the Rec.709 primaries (OPENPBR_DEFAULT_RGB_WAVELENGTHS_NM), e.g. the
+// wavelengths of the working space's primaries (OPENPBR_DEFAULT_RGB_WAVELENGTHS_NM), e.g. the
 // rgb_wavelengths_nm of openpbr_prepare when the renderer does not trace spectra.
 OPENPBR_GLOBAL_CONSTANT vec3 OpenPBR_BaseRgbWavelengths_nm = OPENPBR_DEFAULT_RGB_WAVELENGTHS_NM;
 // IOR of vacuum (and, to 3e-4, air): the exterior_ior of a surface in the open.

@@ -1,4 +1,4 @@
-// The input contract (README "Input contract"): every field of OpenPBR_ResolvedInputs has a
+// The input contract (docs/api.md "Input contract"): every field of OpenPBR_ResolvedInputs has a
 // valid range, and openpbr_prepare clamps to it. NaN maps to the field's default, +-inf to the
 // nearer bound, so no out-of-range or non-finite input can produce NaN, negative values or
 // energy gain downstream. The C++ build can report each clamp through OPENPBR_CLAMP_HOOK.

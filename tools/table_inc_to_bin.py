@@ -4,7 +4,7 @@
 Each table (energy compensation: slang/generated/openpbr_lut_values.inc; fuzz LTC:
 slang/generated/openpbr_fuzz_ltc_values.inc) is tracked once, as the comma-separated float
 literals the headers #include in array mode. GPU callers and the installed package upload the
-same values as raw float32 (openpbr_lut.bin, openpbr_fuzz_ltc.bin, README "Tables"); CMake runs
+same values as raw float32 (openpbr_lut.bin, openpbr_fuzz_ltc.bin, docs/tables.md); CMake runs
 this script to write them into the build directory. Any table size: the count is whatever the
 .inc holds. The literals carry 9 significant digits (%.8e, written by the generators), which
 identify a float32 exactly, so the .bin holds the generator's floats bit for bit

@@ -1,6 +1,6 @@
 // A table's binary form for the page: raw little-endian float32 from the tracked C-literal
 // form (slang/generated/*_values.inc), the format tools/table_inc_to_bin.py writes for the
-// build and the installed package (README "Tables"): the literals carry 9 significant digits,
+// build and the installed package (docs/tables.md): the literals carry 9 significant digits,
 // so rounding each to float32 gives the generator's floats bit for bit.
 import fs from 'node:fs';
 

@@ -32,7 +32,7 @@ constexpr std::size_t query_floats = 16;
 constexpr std::size_t result_floats = 16;
 
 // A frame that is neither +z nor orthogonal: the coated material sets only geometry_basis, so
-// its coat must follow this frame (README "Frames").
+// its coat must follow this frame (docs/api.md "Frames").
 inline OpenPBR_Basis tilted_frame()
 {
     return openpbr_make_basis(normalize(vec3(0.4f, -0.3f, 1.0f)), vec3(1.0f, 0.2f, 0.0f), 1.0f);

@@ -317,19 +317,20 @@ double angle_between(const float* a, const float* b)
 
 bool is_delta_lobe(float lobe_type) { return (std::uint32_t(lobe_type) & OPENPBR_LOBE_TYPE_SPECULAR) != 0u; }
 
-// Compares one path's results with the CPU build's: the per-kind metric (docs/conformance.md)
-// and the pooled one. Sampled outputs are chaotic in the last bit of the random numbers, so a
-// continuous sample is checked for consistency: its weight and pdf against the CPU's eval and
-// pdf at the path's own direction (the CPU kernel run again, same materials and views, with the
-// light set to that direction). Delta samples (weight and pdf independent of a warp) and the
-// direction (as an angle) are compared with the CPU's sample where the lobes agree.
-void compare_with_cpu(ConformancePathResult& result, const std::vector<float>& queries, const std::vector<float>& materials,
-                      const std::vector<float>& gpu_results, const std::vector<float>& cpu_results)
+// The CPU runs a comparison reads besides the CPU batch itself: the CPU at each continuous GPU
+// sample's direction (slots 0-6: eval and pdf there), and the CPU's own sensitivity: both with
+// view and light moved by one ulp, once per nudge pattern.
+struct CpuReferenceRuns
+{
+    std::vector<float> at_gpu_direction;
+    std::vector<std::vector<float>> nudged;
+    std::vector<std::vector<float>> at_gpu_direction_nudged;
+};
+
+CpuReferenceRuns run_cpu_references(const std::vector<float>& queries, const std::vector<float>& materials,
+                                    const std::vector<float>& gpu_results)
 {
     const std::size_t query_count = queries.size() / conformance_query_floats;
-    compare_pooled(result, queries, gpu_results, cpu_results);
-
-    // The CPU at each continuous GPU sample's direction (slots 0-6: eval and pdf there).
     std::vector<float> at_gpu_direction_queries = queries;
     for (std::size_t query = 0; query < query_count; ++query)
     {
@@ -340,22 +341,27 @@ void compare_with_cpu(ConformancePathResult& result, const std::vector<float>& q
             std::copy(gpu + sample_slot_begin, gpu + sample_slot_begin + 3, light);
         }
     }
-    const std::vector<float> at_gpu_direction = run_conformance_cpu(at_gpu_direction_queries, materials);
-    // The CPU's own sensitivity: the same queries with view and light moved by one ulp.
-    std::vector<std::vector<float>> cpu_nudged;
-    std::vector<std::vector<float>> at_gpu_direction_nudged;
+    CpuReferenceRuns runs;
+    runs.at_gpu_direction = run_conformance_cpu(at_gpu_direction_queries, materials);
     for (int pattern = 0; pattern < conformance_nudge_patterns; ++pattern)
     {
-        cpu_nudged.push_back(run_conformance_cpu(nudge_directions(queries, pattern), materials));
-        at_gpu_direction_nudged.push_back(
+        runs.nudged.push_back(run_conformance_cpu(nudge_directions(queries, pattern), materials));
+        runs.at_gpu_direction_nudged.push_back(
             run_conformance_cpu(nudge_directions(at_gpu_direction_queries, pattern), materials));
     }
-    const ConformanceTolerances& tolerances = conformance_tolerances(result.name);
+    return runs;
+}
 
-    // Channels in report order: eval.diffuse rgb (0-2), eval.specular rgb (3-5), pdf (6),
-    // emission rgb (7-9), sample.consistency.pdf (10), its weight.diffuse rgb (11-13) and
-    // weight.specular rgb (14-16), sample.delta.pdf (17), its weight.specular rgb (18-20),
-    // sample.direction.angle (21).
+// Channels in report order: eval.diffuse rgb (0-2), eval.specular rgb (3-5), pdf (6),
+// emission rgb (7-9), sample.consistency.pdf (10), its weight.diffuse rgb (11-13) and
+// weight.specular rgb (14-16), sample.delta.pdf (17), its weight.specular rgb (18-20),
+// sample.direction.angle (21).
+constexpr int eval_diffuse_channel = 0, eval_specular_channel = 3, pdf_channel = 6, emission_channel = 7,
+              consistency_pdf_channel = 10, consistency_diffuse_channel = 11, consistency_specular_channel = 14,
+              delta_pdf_channel = 17, delta_specular_channel = 18, direction_angle_channel = 21, channel_count = 22;
+
+std::vector<ChannelAccumulator> make_channel_accumulators(std::size_t query_count)
+{
     static const char* const channel_names[] = {"eval.diffuse.r",
                                                 "eval.diffuse.g",
                                                 "eval.diffuse.b",
@@ -378,107 +384,169 @@ void compare_with_cpu(ConformancePathResult& result, const std::vector<float>& q
                                                 "sample.delta.weight.specular.g",
                                                 "sample.delta.weight.specular.b",
                                                 "sample.direction.angle"};
-    constexpr int eval_diffuse = 0, eval_specular = 3, pdf_channel = 6, emission = 7, consistency_pdf = 10,
-                  consistency_diffuse = 11, consistency_specular = 14, delta_pdf = 17, delta_specular = 18,
-                  direction_angle = 21, channel_count = 22;
     std::vector<ChannelAccumulator> channels(channel_count);
     for (int index = 0; index < channel_count; ++index)
     {
         channels[std::size_t(index)].channel.name = channel_names[index];
-        channels[std::size_t(index)].channel.angle = index == direction_angle;
+        channels[std::size_t(index)].channel.angle = index == direction_angle_channel;
         channels[std::size_t(index)].errors.reserve(query_count);
     }
+    return channels;
+}
 
-    std::size_t mismatches = 0;
-    for (std::size_t query = 0; query < query_count; ++query)
+// One query's comparison, adding to the channels: its result record on the path (gpu), on the
+// CPU (cpu), and on the CPU at the path's sample direction (cpu_there), with the nudged runs.
+struct QueryComparison
+{
+    std::vector<ChannelAccumulator>& channels;
+    const ConformanceTolerances& tolerances;
+    const CpuReferenceRuns& references;
+    std::size_t query;
+    std::size_t record;  // the first result slot of the query in every run
+    const float* gpu;
+    const float* cpu;
+    const float* cpu_there;
+
+    // The largest change of a value over the nudged runs; `value(run)` reads it from one.
+    template <typename Value> double largest_change(double cpu_value, const Value& value) const
     {
-        const float* gpu = gpu_results.data() + query * conformance_result_floats;
-        const float* cpu = cpu_results.data() + query * conformance_result_floats;
-        const float* cpu_there = at_gpu_direction.data() + query * conformance_result_floats;
-        const std::size_t record = query * conformance_result_floats;
-        // The largest change of a value over the nudged runs; `value(run)` reads it from one.
-        auto largest_change = [&](double cpu_value, const auto& value) {
-            double change = 0.0;
-            for (int pattern = 0; pattern < conformance_nudge_patterns; ++pattern)
-            {
-                change = std::max(change, std::fabs(value(pattern) - cpu_value));
-            }
-            return change;
-        };
+        double change = 0.0;
+        for (int pattern = 0; pattern < conformance_nudge_patterns; ++pattern)
+        {
+            change = std::max(change, std::fabs(value(pattern) - cpu_value));
+        }
+        return change;
+    }
+
+    // A value's allowance: the relative bound (of max(|cpu|, floor)), or the CPU's own change
+    // under a one-ulp move of its input directions times condition_factor, the larger.
+    void relative(int index, float gpu_value, double cpu_value, double change) const
+    {
+        const double difference = std::fabs(double(gpu_value) - cpu_value);
+        const double scale = std::max(std::fabs(cpu_value), tolerances.relative_floor);
+        const double sensitivity = tolerances.condition_factor * change;
+        channels[std::size_t(index)].add(
+            difference / scale, difference / std::max(tolerances.relative_p999 * scale, sensitivity),
+            difference / std::max(tolerances.relative_max * scale, sensitivity), query, gpu_value, cpu_value);
+    }
+
+    std::size_t nonfinite_outputs() const
+    {
+        std::size_t count = 0;
         for (int slot = 0; slot < emission_slot_end; ++slot)
         {
-            if (!std::isfinite(gpu[slot]))
-            {
-                ++result.nonfinite;
-            }
+            count += std::isfinite(gpu[slot]) ? 0 : 1;
         }
-        // A value's allowance: the relative bound (of max(|cpu|, floor)), or the CPU's own change
-        // under a one-ulp move of its input directions times condition_factor, the larger.
-        auto relative = [&](int index, float gpu_value, double cpu_value, double change) {
-            const double difference = std::fabs(double(gpu_value) - cpu_value);
-            const double scale = std::max(std::fabs(cpu_value), tolerances.relative_floor);
-            const double sensitivity = tolerances.condition_factor * change;
-            channels[std::size_t(index)].add(
-                difference / scale, difference / std::max(tolerances.relative_p999 * scale, sensitivity),
-                difference / std::max(tolerances.relative_max * scale, sensitivity), query, gpu_value, cpu_value);
-        };
+        return count;
+    }
+
+    // Eval, pdf and emission: the same inputs on both sides, compared for every query.
+    void compare_eval_and_emission() const
+    {
         for (int c = 0; c < 3; ++c)
         {
             for (const int slot : {c, 3 + c, emission_slot_begin + c})
             {
-                const int index = slot < 3 ? eval_diffuse + c : slot < 6 ? eval_specular + c : emission + c;
+                const int index = slot < 3   ? eval_diffuse_channel + c
+                                  : slot < 6 ? eval_specular_channel + c
+                                             : emission_channel + c;
                 relative(index, gpu[slot], cpu[slot], largest_change(cpu[slot], [&](int pattern) {
-                             return double(cpu_nudged[std::size_t(pattern)][record + std::size_t(slot)]);
+                             return double(references.nudged[std::size_t(pattern)][record + std::size_t(slot)]);
                          }));
             }
         }
-        relative(pdf_channel, gpu[6], cpu[6],
-                 largest_change(cpu[6], [&](int pattern) { return double(cpu_nudged[std::size_t(pattern)][record + 6]); }));
+        relative(pdf_channel, gpu[6], cpu[6], largest_change(cpu[6], [&](int pattern) {
+                     return double(references.nudged[std::size_t(pattern)][record + 6]);
+                 }));
+    }
 
-        const float gpu_lobe = gpu[lobe_type_slot];
-        const bool lobes_agree = gpu_lobe == cpu[lobe_type_slot];
+    // A continuous sample: its pdf and weight = eval / pdf against the CPU's at the sample's
+    // direction (slang/openpbr_bsdf.h, openpbr_sample).
+    void compare_sample_consistency() const
+    {
+        const double pdf_there = cpu_there[6];
+        auto ratio = [](double value, double pdf) { return pdf > 0.0 ? value / pdf : 0.0; };
+        auto there = [&](int pattern, int slot) {
+            return double(references.at_gpu_direction_nudged[std::size_t(pattern)][record + std::size_t(slot)]);
+        };
+        relative(consistency_pdf_channel, gpu[16], pdf_there,
+                 largest_change(pdf_there, [&](int pattern) { return there(pattern, 6); }));
+        for (int c = 0; c < 3; ++c)
+        {
+            for (const int slot : {c, 3 + c})
+            {
+                const double expected = ratio(cpu_there[slot], pdf_there);
+                relative(
+                    (slot < 3 ? consistency_diffuse_channel : consistency_specular_channel) + c, gpu[10 + slot], expected,
+                    largest_change(expected, [&](int pattern) { return ratio(there(pattern, slot), there(pattern, 6)); }));
+            }
+        }
+    }
+
+    // A sample whose lobe agrees with the CPU's: its direction as an angle and, for a delta
+    // lobe, its pdf and weight against the CPU's sample.
+    void compare_agreeing_sample(float gpu_lobe) const
+    {
+        const double angle = angle_between(gpu + sample_slot_begin, cpu + sample_slot_begin);
+        channels[direction_angle_channel].add(angle, angle / tolerances.angle_p999, angle / tolerances.angle_max, query,
+                                              gpu[sample_slot_begin], cpu[sample_slot_begin]);
+        if (!is_delta_lobe(gpu_lobe))
+        {
+            return;
+        }
+        // A nudged run whose lobe differs says nothing about this one's condition.
+        auto same_lobe = [&](int slot) {
+            return [&, slot](int pattern) {
+                const float* nudged = references.nudged[std::size_t(pattern)].data() + record;
+                return nudged[lobe_type_slot] == gpu_lobe ? double(nudged[slot]) : double(cpu[slot]);
+            };
+        };
+        relative(delta_pdf_channel, gpu[16], cpu[16], largest_change(cpu[16], same_lobe(16)));
+        for (int c = 0; c < 3; ++c)
+        {
+            relative(delta_specular_channel + c, gpu[13 + c], cpu[13 + c], largest_change(cpu[13 + c], same_lobe(13 + c)));
+        }
+    }
+};
+
+// Compares one path's results with the CPU build's: the per-kind metric (docs/conformance.md)
+// and the pooled one. Sampled outputs are chaotic in the last bit of the random numbers, so a
+// continuous sample is checked for consistency: its weight and pdf against the CPU's eval and
+// pdf at the path's own direction (the CPU kernel run again, same materials and views, with the
+// light set to that direction). Delta samples (weight and pdf independent of a warp) and the
+// direction (as an angle) are compared with the CPU's sample where the lobes agree.
+void compare_with_cpu(ConformancePathResult& result, const std::vector<float>& queries, const std::vector<float>& materials,
+                      const std::vector<float>& gpu_results, const std::vector<float>& cpu_results)
+{
+    const std::size_t query_count = queries.size() / conformance_query_floats;
+    compare_pooled(result, queries, gpu_results, cpu_results);
+    const CpuReferenceRuns references = run_cpu_references(queries, materials, gpu_results);
+    std::vector<ChannelAccumulator> channels = make_channel_accumulators(query_count);
+    const ConformanceTolerances& tolerances = conformance_tolerances(result.name);
+    std::size_t mismatches = 0;
+    for (std::size_t query = 0; query < query_count; ++query)
+    {
+        const std::size_t record = query * conformance_result_floats;
+        const QueryComparison comparison{channels,
+                                         tolerances,
+                                         references,
+                                         query,
+                                         record,
+                                         gpu_results.data() + record,
+                                         cpu_results.data() + record,
+                                         references.at_gpu_direction.data() + record};
+        result.nonfinite += comparison.nonfinite_outputs();
+        comparison.compare_eval_and_emission();
+        const float gpu_lobe = comparison.gpu[lobe_type_slot];
+        const bool lobes_agree = gpu_lobe == comparison.cpu[lobe_type_slot];
         mismatches += lobes_agree ? 0 : 1;
         if (gpu_lobe != 0.0f && !is_delta_lobe(gpu_lobe))
         {
-            // weight = eval / pdf at the sample's direction (slang/openpbr_bsdf.h, openpbr_sample).
-            const double pdf_there = cpu_there[6];
-            auto ratio = [](double value, double pdf) { return pdf > 0.0 ? value / pdf : 0.0; };
-            auto there = [&](int pattern, int slot) {
-                return double(at_gpu_direction_nudged[std::size_t(pattern)][record + std::size_t(slot)]);
-            };
-            relative(consistency_pdf, gpu[16], pdf_there,
-                     largest_change(pdf_there, [&](int pattern) { return there(pattern, 6); }));
-            for (int c = 0; c < 3; ++c)
-            {
-                for (const int slot : {c, 3 + c})
-                {
-                    const double expected = ratio(cpu_there[slot], pdf_there);
-                    relative((slot < 3 ? consistency_diffuse : consistency_specular) + c, gpu[10 + slot], expected,
-                             largest_change(expected,
-                                            [&](int pattern) { return ratio(there(pattern, slot), there(pattern, 6)); }));
-                }
-            }
+            comparison.compare_sample_consistency();
         }
         if (lobes_agree && gpu_lobe != 0.0f)
         {
-            const double angle = angle_between(gpu + sample_slot_begin, cpu + sample_slot_begin);
-            channels[direction_angle].add(angle, angle / tolerances.angle_p999, angle / tolerances.angle_max, query,
-                                          gpu[sample_slot_begin], cpu[sample_slot_begin]);
-            if (is_delta_lobe(gpu_lobe))
-            {
-                // A nudged run whose lobe differs says nothing about this one's condition.
-                auto same_lobe = [&](int slot) {
-                    return [&, slot](int pattern) {
-                        const float* nudged = cpu_nudged[std::size_t(pattern)].data() + record;
-                        return nudged[lobe_type_slot] == gpu_lobe ? double(nudged[slot]) : double(cpu[slot]);
-                    };
-                };
-                relative(delta_pdf, gpu[16], cpu[16], largest_change(cpu[16], same_lobe(16)));
-                for (int c = 0; c < 3; ++c)
-                {
-                    relative(delta_specular + c, gpu[13 + c], cpu[13 + c], largest_change(cpu[13 + c], same_lobe(13 + c)));
-                }
-            }
+            comparison.compare_agreeing_sample(gpu_lobe);
         }
     }
     result.channels.clear();
@@ -630,6 +698,31 @@ std::vector<Material> conformance_materials(const std::vector<Material>& library
         inputs.geometry_opacity = 0.8f;
         materials.push_back(everything);
     }
+    // What OpenPBR 1.1.1 states, on every path (tests/bsdf/test_spec_1_1_1.cpp tests the same on
+    // the CPU): an HDR emission colour under a coat, a tinted metal at part weight, thin-walled
+    // subsurface with a radius that must have no effect.
+    Material hdr_emission = default_material();
+    hdr_emission.name = "HdrEmission";
+    hdr_emission.inputs.emission_color = glm::vec3(4.0f, 2.0f, 1.0f);
+    hdr_emission.inputs.emission_luminance = 50.0f;
+    hdr_emission.inputs.coat_weight = 0.5f;
+    materials.push_back(hdr_emission);
+    Material weighted_metal = default_material();
+    weighted_metal.name = "TintedMetalPartWeight";
+    weighted_metal.inputs.base_metalness = 1.0f;
+    weighted_metal.inputs.base_color = glm::vec3(0.95f, 0.64f, 0.54f);
+    weighted_metal.inputs.specular_color = glm::vec3(0.4f, 0.7f, 1.0f);
+    weighted_metal.inputs.specular_weight = 0.5f;
+    weighted_metal.inputs.specular_roughness = 0.35f;
+    materials.push_back(weighted_metal);
+    Material thin_subsurface = default_material();
+    thin_subsurface.name = "ThinWalledSubsurfaceRadius";
+    thin_subsurface.inputs.geometry_thin_walled = true;
+    thin_subsurface.inputs.subsurface_weight = 0.7f;
+    thin_subsurface.inputs.subsurface_color = glm::vec3(0.8f, 0.5f, 0.3f);
+    thin_subsurface.inputs.subsurface_radius = 5.0f;
+    thin_subsurface.inputs.subsurface_radius_scale = glm::vec3(0.1f, 0.9f, 0.3f);
+    materials.push_back(thin_subsurface);
     return materials;
 }
 
@@ -774,6 +867,21 @@ std::vector<std::string> conformance_violations(const ConformancePathResult& res
     return violations;
 }
 
+PathVerdict conformance_verdict(const ConformanceReport& report)
+{
+    PathVerdict verdict;
+    for (const ConformancePathResult& path : report.paths)
+    {
+        if (!path.executed)
+        {
+            verdict.not_executed.push_back({path.name, path.note});
+            continue;
+        }
+        (conformance_violations(path).empty() ? verdict.passed : verdict.failed).push_back(path.name);
+    }
+    return verdict;
+}
+
 nlohmann::json to_json(const ConformanceReport& report)
 {
     nlohmann::json json;
@@ -831,6 +939,7 @@ nlohmann::json to_json(const ConformanceReport& report)
                           {"angle_max_radians", tolerances.angle_max},
                           {"condition_factor", tolerances.condition_factor},
                           {"lobe_mismatch_fraction", tolerances.lobe_mismatch_fraction}};
+    json["verdict"] = to_json(conformance_verdict(report));
     return json;
 }
 
@@ -877,6 +986,7 @@ std::string to_text(const ConformanceReport& report)
         text << "    old metric (pooled, not the verdict): max rel err " << path.max_relative_error << ", p99.9 "
              << path.p999_relative_error << ", worst: " << path.worst_output << "\n";
     }
+    text << verdict_line(conformance_verdict(report)) << "\n";
     return text.str();
 }
 

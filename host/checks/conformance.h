@@ -1,6 +1,6 @@
 // Cross-target conformance: one batch of BSDF queries (material, view, light, three random
 // numbers) evaluated by the CPU build of the single source and by each GPU path, compared
-// output by output. See README "Conformance".
+// output by output. See docs/conformance.md.
 #pragma once
 
 #include <cstddef>
@@ -11,6 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "host/checks/path_verdict.h"
 #include "host/scene/material_library.h"
 #include "host/scene/material_packing.h"
 #include "host/gpu/vulkan_runner.h"
@@ -162,7 +163,8 @@ std::vector<float> nudge_random_numbers(const std::vector<float>& queries);
 std::vector<float> nudge_directions(const std::vector<float>& queries, int pattern);
 
 // Materials used by conformance: the given library plus synthetic materials that switch on
-// every lobe at partial weight.
+// every lobe at partial weight, and three that exercise what OpenPBR 1.1.1 states (an HDR
+// emission colour, a tinted metal at part weight, thin-walled subsurface with a radius).
 std::vector<Material> conformance_materials(const std::vector<Material>& library);
 
 // Deterministic query batch.
@@ -244,7 +246,12 @@ ConformanceReport run_conformance(const std::vector<Material>& materials, const 
 // The bounds of conformance_tolerances() a path breaks, one line each (empty: it passes).
 std::vector<std::string> conformance_violations(const ConformancePathResult& result);
 
+// The run's verdict: an executed path passes when conformance_violations finds nothing.
+PathVerdict conformance_verdict(const ConformanceReport& report);
+
+// JSON: the report's figures per path, the tolerances, and "verdict" (to_json(PathVerdict)).
 nlohmann::json to_json(const ConformanceReport& report);
+// Text: a line per path (then its figures and violations), the verdict line last.
 std::string to_text(const ConformanceReport& report);
 
 }  // namespace openpbr::host

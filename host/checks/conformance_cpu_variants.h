@@ -1,4 +1,4 @@
-// CPU conformance paths that round like a GPU (README "Conformance", docs/conformance.md):
+// CPU conformance paths that round like a GPU (docs/conformance.md, docs/conformance.md):
 //   cpu-fma   the conformance kernel compiled with -mfma -ffp-contract=fast: every a * b + c
 //             the compiler can fuse becomes one fused multiply-add, as GPU compilers do
 //             (NVIDIA's fuse by default, SPIR-V drivers may);

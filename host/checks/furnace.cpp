@@ -83,12 +83,18 @@ template <typename Edit> OpenPBR_ResolvedInputs with(OpenPBR_ResolvedInputs inpu
     return inputs;
 }
 
-std::vector<FurnaceConfig> make_configs()
+using E = FurnaceExpectation;
+
+// A function, not a global: test programs build their parameter lists from the configurations
+// during static initialization, before this file's globals would be.
+std::vector<FurnaceSide> both_sides() { return {FurnaceSide::outside, FurnaceSide::inside}; }
+
+// The specification's white furnace list (every configuration that must keep its energy), each
+// group under the spec's wording, and the default material, which may only not gain energy.
+std::vector<FurnaceConfig> specification_configs()
 {
-    using E = FurnaceExpectation;
-    using S = FurnaceSide;
-    const std::vector<S> both = {S::outside, S::inside};
-    std::vector<FurnaceConfig> configs = {
+    const std::vector<FurnaceSide> both = both_sides();
+    return {
         // Spec: a fully metallic base with white base_color and specular_color.
         {"white_metal_r0", white_metal(0.0f, 0.0f)},
         {"white_metal_r0p2", white_metal(0.2f, 0.0f)},
@@ -205,9 +211,14 @@ std::vector<FurnaceConfig> make_configs()
         // The default material absorbs (base_color 0.8): it may only not gain energy.
         {"default_material", openpbr_make_default_resolved_inputs(), E::no_energy_gain},
     };
-    // Relative-IOR sweep: every dielectric interface must keep its energy at every relative
-    // IOR, the index-matched interface (eta = 1, invisible at any roughness) and its
-    // neighbourhood (0.99, 1.001, 1.01) included, from both sides.
+}
+
+// Relative-IOR sweep: every dielectric interface must keep its energy at every relative IOR,
+// the index-matched interface (eta = 1, invisible at any roughness) and its neighbourhood
+// (0.99, 1.001, 1.01) included, from both sides.
+void append_relative_ior_sweep(std::vector<FurnaceConfig>& configs)
+{
+    const std::vector<FurnaceSide> both = both_sides();
     for (const float eta : furnace_relative_iors())
     {
         for (const float roughness : {0.05f, 0.2f, 0.5f, 1.0f})
@@ -225,8 +236,13 @@ std::vector<FurnaceConfig> make_configs()
                                 }),
                            E::relative_ior_sweep});
     }
-    // specular_weight scales F0 through the IOR (spec "Base Substrate"): 0 makes the modulated
-    // IOR 1, an index-matched rough interface; 0.5 a weaker one.
+}
+
+// specular_weight scales F0 through the IOR (spec "Base Substrate"): 0 makes the modulated IOR
+// 1, an index-matched rough interface; 0.5 a weaker one.
+void append_specular_weight_sweep(std::vector<FurnaceConfig>& configs)
+{
+    const std::vector<FurnaceSide> both = both_sides();
     for (const float specular_weight : {0.0f, 0.5f})
     {
         for (const float roughness : {0.0f, 0.2f, 0.5f})
@@ -237,8 +253,13 @@ std::vector<FurnaceConfig> make_configs()
                  E::relative_ior_sweep, both});
         }
     }
-    // In water (exterior IOR 1.33): glass (relative 1.13), an air bubble (0.75), a water drop
-    // (index-matched, 1), and a coated glass (coat against water, glass against the coat).
+}
+
+// In water (exterior IOR 1.33): glass (relative 1.13), an air bubble (0.75), a water drop
+// (index-matched, 1), and a coated glass (coat against water, glass against the coat).
+void append_in_water_sweep(std::vector<FurnaceConfig>& configs)
+{
+    const std::vector<FurnaceSide> both = both_sides();
     for (const float ior : {1.5f, 1.0f, 1.33f})
     {
         for (const float roughness : {0.2f, 0.5f})
@@ -258,12 +279,16 @@ std::vector<FurnaceConfig> make_configs()
                                   E::relative_ior_sweep};
     coated_in_water.exterior_ior = 1.33f;
     configs.push_back(coated_in_water);
-    // Dispersion (spec "Translucent base"): each channel refracts with its own IOR and must keep
-    // its energy. At the lowest Abbe number the input contract keeps (1) and wavelengths at the
-    // ends of its range (1000 and 300 nm), the channels' relative IORs spread from about 1 (the
-    // 1000 nm channel) to far from it: 1.5 gives 1.004 / 1.61 / 3 (3.65 clamped to the IOR
-    // range's top), 0.67 gives 0.998 / 0.60 / 1/3 (clamped to the bottom). The last row is a
-    // common glass (Abbe number 20) at the default wavelengths.
+}
+
+// Dispersion (spec "Translucent base"): each channel refracts with its own IOR and must keep its
+// energy. At the lowest Abbe number the input contract keeps (1) and wavelengths at the ends of
+// its range (1000 and 300 nm), the channels' relative IORs spread from about 1 (the 1000 nm
+// channel) to far from it: 1.5 gives 1.004 / 1.61 / 3 (3.65 clamped to the IOR range's top),
+// 0.67 gives 0.998 / 0.60 / 1/3 (clamped to the bottom).
+void append_strong_dispersion_sweep(std::vector<FurnaceConfig>& configs)
+{
+    const std::vector<FurnaceSide> both = both_sides();
     for (const float ior : {0.67f, 1.5f})
     {
         for (const float roughness : {0.1f, 0.5f})
@@ -279,10 +304,14 @@ std::vector<FurnaceConfig> make_configs()
             configs.push_back(config);
         }
     }
-    // Views next to the critical angle seen from the less dense side (relative IOR below 1,
-    // mu_c = sqrt(1 - eta^2)): the albedos step there over a few alpha as the mean microfacet
-    // goes in and out of total internal reflection, which the fixed view cosines above never
-    // meet. 0.01 before it, 0.005 and 0.02 past it.
+}
+
+// Views next to the critical angle seen from the less dense side (relative IOR below 1,
+// mu_c = sqrt(1 - eta^2)): the albedos step there over a few alpha as the mean microfacet goes
+// in and out of total internal reflection, which the fixed view cosines of the other rows never
+// meet. 0.01 before it, 0.005 and 0.02 past it.
+void append_critical_angle_sweep(std::vector<FurnaceConfig>& configs)
+{
     for (const float eta : {0.5f, 0.75f, 0.9f, 0.95f, 0.99f})
     {
         for (const float roughness : {0.05f, 0.1f, 0.2f})
@@ -297,13 +326,25 @@ std::vector<FurnaceConfig> make_configs()
             }
         }
     }
+}
+
+// The specification's list, then the sweeps; the order is the report's (and the JSON's).
+std::vector<FurnaceConfig> make_configs()
+{
+    std::vector<FurnaceConfig> configs = specification_configs();
+    append_relative_ior_sweep(configs);
+    append_specular_weight_sweep(configs);
+    append_in_water_sweep(configs);
+    append_strong_dispersion_sweep(configs);
+    append_critical_angle_sweep(configs);
+    // A common glass (Abbe number 20) at the default wavelengths.
     configs.push_back({"sweep_dispersive_glass_abbe20_r0p3",
                        with(white_glass(0.3f, 1.5f),
                             [](auto& i) {
                                 i.transmission_dispersion_scale = 1.0f;
                                 i.transmission_dispersion_abbe_number = 20.0f;
                             }),
-                       E::relative_ior_sweep, both});
+                       E::relative_ior_sweep, both_sides()});
     return configs;
 }
 

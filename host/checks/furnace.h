@@ -90,7 +90,7 @@ bool furnace_albedo_passes(FurnaceExpectation expectation, float cos_theta, doub
 
 // A row of the relative-IOR sweep that does not meet the sweep's band, with the band it is held
 // to instead: the measured range of its albedo (every channel, 65536 and 2^20 samples per row)
-// widened by its noise. README "Known limits" lists them and why.
+// widened by its noise. docs/known-limits.md lists them and why.
 struct FurnaceKnownLimit
 {
     const char* row;  // configuration name with "_inside" for the inside view

@@ -685,15 +685,39 @@ std::vector<StabilityCase> load_stability_corpus(const std::string& path)
     return parse_stability_corpus(document, path);
 }
 
+bool stability_path_passes(const StabilityPathResult& path)
+{
+    return path.executed && path.nonfinite == 0 && path.negative == 0 && path.bad_directions == 0;
+}
+
 bool has_violations(const StabilityReport& report)
 {
     if (report.volume_violations > 0)
     {
         return true;
     }
-    return std::any_of(report.paths.begin(), report.paths.end(), [](const StabilityPathResult& path) {
-        return path.nonfinite > 0 || path.negative > 0 || path.bad_directions > 0;
-    });
+    return std::any_of(report.paths.begin(), report.paths.end(),
+                       [](const StabilityPathResult& path) { return path.executed && !stability_path_passes(path); });
+}
+
+PathVerdict stability_verdict(const StabilityReport& report)
+{
+    PathVerdict verdict;
+    if (report.volume_violations > 0)
+    {
+        verdict.other_failures.push_back("volume check fails in " + std::to_string(report.volume_violations) +
+                                         (report.volume_violations == 1 ? " case" : " cases"));
+    }
+    for (const StabilityPathResult& path : report.paths)
+    {
+        if (!path.executed)
+        {
+            verdict.not_executed.push_back({path.name, path.note});
+            continue;
+        }
+        (stability_path_passes(path) ? verdict.passed : verdict.failed).push_back(path.name);
+    }
+    return verdict;
 }
 
 StabilityPathResult run_stability_path(const std::string& name, const StabilityExecutor& execute,
@@ -717,6 +741,10 @@ StabilityReport run_stability_cpu(const std::vector<StabilityCase>& cases, const
             run_path("cpu", run_conformance_cpu, cases, pack_cases(cases), options.samples_per_case, options.seed);
         cpu.note = "CPU build (C++ single source)";
         report.paths.push_back(std::move(cpu));
+        if (options.on_path_finished)
+        {
+            options.on_path_finished(report.paths.back());
+        }
     }
     for (const StabilityCase& stability_case : cases)
     {
@@ -792,49 +820,59 @@ nlohmann::json to_json(const StabilityReport& report)
                                    {"anisotropy", float_or_string(result.anisotropy)}});
     }
     json["volume"] = volume;
+    json["verdict"] = to_json(stability_verdict(report));
     return json;
 }
 
-std::string to_text(const StabilityReport& report)
+std::string stability_header_text(const StabilityReport& report)
 {
     std::ostringstream text;
     text << "stability: " << report.case_count << " cases, " << report.samples_per_case << " samples per case (GPU "
          << report.gpu_samples_per_case << "), seed " << report.seed << "\n";
-    for (const StabilityPathResult& path : report.paths)
+    return text.str();
+}
+
+std::string to_text(const StabilityPathResult& path)
+{
+    std::ostringstream text;
+    if (!path.executed)
     {
-        if (!path.executed)
-        {
-            text << "  " << path.name << ": not executed: " << path.note << "\n";
-            continue;
-        }
-        text << "  " << path.name << " (" << path.note << "): non-finite " << path.nonfinite << ", negative "
-             << path.negative << ", max mean weight " << std::fixed << std::setprecision(5) << path.max_mean_weight << " ("
-             << path.max_mean_weight_case << "), max weight " << std::setprecision(3) << path.max_weight << " ("
-             << path.max_weight_case << "), " << std::setprecision(1) << path.seconds << " s\n";
+        text << "  " << path.name << ": not executed: " << path.note << "\n";
+        return text.str();
+    }
+    text << "  " << path.name << " (" << path.note << "): non-finite " << path.nonfinite << ", negative " << path.negative
+         << ", max mean weight " << std::fixed << std::setprecision(5) << path.max_mean_weight << " ("
+         << path.max_mean_weight_case << "), max weight " << std::setprecision(3) << path.max_weight << " ("
+         << path.max_weight_case << "), " << std::setprecision(1) << path.seconds << " s\n";
+    text.unsetf(std::ios::floatfield);
+    text << std::setprecision(6);
+    text << "    " << std::left << std::setw(48) << "case" << std::right << std::setw(7) << "nonfin" << std::setw(7) << "neg"
+         << std::setw(9) << "invalid" << std::setw(9) << "delta" << std::setw(12) << "max_w" << std::setw(10) << "mean_w"
+         << std::setw(9) << "+-"
+         << "\n";
+    for (const StabilityCaseResult& result : path.cases)
+    {
+        const double n = double(std::max<std::size_t>(result.samples, 1));
+        text << "    " << std::left << std::setw(48) << result.name << std::right << std::setw(7) << result.nonfinite
+             << std::setw(7) << result.negative << std::fixed << std::setprecision(4) << std::setw(9)
+             << result.invalid_sample_fraction << std::setw(9) << double(result.delta_samples) / n << std::setprecision(3)
+             << std::setw(12) << result.max_weight << std::setprecision(5) << std::setw(10) << result.max_mean_weight
+             << std::setw(9) << result.mean_weight_standard_error << "\n";
         text.unsetf(std::ios::floatfield);
-        text << std::setprecision(6);
-        text << "    " << std::left << std::setw(48) << "case" << std::right << std::setw(7) << "nonfin" << std::setw(7)
-             << "neg" << std::setw(9) << "invalid" << std::setw(9) << "delta" << std::setw(12) << "max_w" << std::setw(10)
-             << "mean_w" << std::setw(9) << "+-"
-             << "\n";
-        for (const StabilityCaseResult& result : path.cases)
+        for (const StabilityQueryRecord& record : result.violations)
         {
-            const double n = double(std::max<std::size_t>(result.samples, 1));
-            text << "    " << std::left << std::setw(48) << result.name << std::right << std::setw(7) << result.nonfinite
-                 << std::setw(7) << result.negative << std::fixed << std::setprecision(4) << std::setw(9)
-                 << result.invalid_sample_fraction << std::setw(9) << double(result.delta_samples) / n
-                 << std::setprecision(3) << std::setw(12) << result.max_weight << std::setprecision(5) << std::setw(10)
-                 << result.max_mean_weight << std::setw(9) << result.mean_weight_standard_error << "\n";
-            text.unsetf(std::ios::floatfield);
-            for (const StabilityQueryRecord& record : result.violations)
-            {
-                text << "      " << record.what << " at query " << record.query << ": view (" << record.view[0] << ", "
-                     << record.view[1] << ", " << record.view[2] << "), light (" << record.light[0] << ", "
-                     << record.light[1] << ", " << record.light[2] << "), u (" << record.u[0] << ", " << record.u[1] << ", "
-                     << record.u[2] << ")\n";
-            }
+            text << "      " << record.what << " at query " << record.query << ": view (" << record.view[0] << ", "
+                 << record.view[1] << ", " << record.view[2] << "), light (" << record.light[0] << ", " << record.light[1]
+                 << ", " << record.light[2] << "), u (" << record.u[0] << ", " << record.u[1] << ", " << record.u[2]
+                 << ")\n";
         }
     }
+    return text.str();
+}
+
+std::string stability_volume_text(const StabilityReport& report)
+{
+    std::ostringstream text;
     text << "  volume (CPU openpbr_prepare_volume): " << report.volume_violations << " violations\n";
     for (const StabilityVolumeResult& result : report.volumes)
     {
@@ -846,6 +884,16 @@ std::string to_text(const StabilityReport& report)
         }
     }
     return text.str();
+}
+
+std::string to_text(const StabilityReport& report)
+{
+    std::string text = stability_header_text(report);
+    for (const StabilityPathResult& path : report.paths)
+    {
+        text += to_text(path);
+    }
+    return text + stability_volume_text(report) + verdict_line(stability_verdict(report)) + "\n";
 }
 
 std::size_t write_fuzz_seed_corpus(const std::vector<StabilityCase>& cases, const std::string& directory)

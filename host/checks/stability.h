@@ -1,4 +1,4 @@
-// Numerical stability on hard cases (README "Stability"): a corpus of hard inputs
+// Numerical stability on hard cases (docs/stability.md): a corpus of hard inputs
 // (tests/data/stability_corpus.json) evaluated by the CPU build and by every GPU path through the
 // conformance kernel, checked for non-finite and negative outputs, invalid samples and energy
 // gain (mean sample weight above 1).
@@ -24,6 +24,7 @@
 #include <nlohmann/json.hpp>
 
 #include <glm/glm.hpp>  // first: the OpenPBR headers require it (interop/openpbr_interop_cpp.h)
+#include "host/checks/path_verdict.h"
 #include "slang/openpbr_resolved_inputs.h"
 
 namespace openpbr::host {
@@ -55,6 +56,8 @@ std::vector<StabilityCase> load_stability_corpus(const std::string& path);
 // The input names a corpus material may set: supported_input_names() plus the two rotations.
 std::vector<std::string> stability_input_names();
 
+struct StabilityPathResult;
+
 struct StabilityOptions
 {
     // Extra samples per case for the sampling statistics (random u and light, fixed seed).
@@ -68,6 +71,10 @@ struct StabilityOptions
     // Paths to run, e.g. {"cpu", "slang-spirv"}; empty = "cpu" and every known GPU path.
     std::vector<std::string> paths;
     bool validation = false;  // Vulkan validation layers
+    // Called as each path finishes, executed or not, in report order (the CPU build first), e.g.
+    // to print its lines at once: `openpbr stability` writes each path's block as it finishes,
+    // so that its output (a log file too) shows the run's progress. Unset: nothing is called.
+    std::function<void(const StabilityPathResult&)> on_path_finished;
 };
 
 // A query as the conformance kernel sees it, with what it produced: for reproducing a finding.
@@ -139,9 +146,20 @@ struct StabilityReport
     std::size_t volume_violations = 0;
 };
 
-// Whether a path found any non-finite or negative output, a sample direction not of unit
-// length, or a volume violation.
+// Whether an executed path found no non-finite or negative output and no sample direction not
+// of unit length.
+bool stability_path_passes(const StabilityPathResult& path);
+
+// Whether a path fails (stability_path_passes) or a volume check does.
 bool has_violations(const StabilityReport& report);
+
+// The run's verdict: the executed paths by stability_path_passes, the volume checks' failures
+// first.
+PathVerdict stability_verdict(const StabilityReport& report);
+
+// The paths run_stability runs for these options, in report order: options.paths, or "cpu"
+// and every known GPU path; an unknown name is an error (std::invalid_argument).
+std::vector<std::string> stability_paths(const StabilityOptions& options);
 
 // The corpus on the paths options.paths names: the CPU build and the GPU paths
 // (host/checks/execution_path.h), each through the same query stream (stability_paths.cpp).
@@ -165,9 +183,17 @@ StabilityPathResult run_stability_path(const std::string& name, const StabilityE
                                        std::uint64_t seed);
 
 // JSON: {"cases": N, "samples_per_case": n, "seed": s, "paths": [{"name", "executed", "note",
-// "nonfinite", "negative", "max_mean_weight", "max_weight", "cases": [...]}], "volume": {...}}.
+// "nonfinite", "negative", "max_mean_weight", "max_weight", "cases": [...]}], "volume": {...},
+// "verdict": to_json(stability_verdict(report))}.
 // Every case counts towards max_mean_weight: emission is not part of the sample weights.
 nlohmann::json to_json(const StabilityReport& report);
+
+// The text report in the order `openpbr stability` prints it as the run goes: the header (the
+// counts and the seed), each path's block (its line, then a row per case), the volume checks,
+// and the verdict line last. to_text(report) is all of them.
+std::string stability_header_text(const StabilityReport& report);
+std::string to_text(const StabilityPathResult& path);
+std::string stability_volume_text(const StabilityReport& report);
 std::string to_text(const StabilityReport& report);
 
 // The binary seed inputs of fuzz/fuzz_bsdf.cpp (fuzz/fuzz_input_layout.h), one per case and

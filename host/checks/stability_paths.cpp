@@ -14,7 +14,7 @@
 
 namespace openpbr::host {
 
-StabilityReport run_stability(const std::vector<StabilityCase>& cases, const StabilityOptions& options)
+std::vector<std::string> stability_paths(const StabilityOptions& options)
 {
     std::vector<std::string> wanted = options.paths;
     if (wanted.empty())
@@ -33,11 +33,34 @@ StabilityReport run_stability(const std::vector<StabilityCase>& cases, const Sta
             throw std::invalid_argument("unknown path '" + name + "' (known: cpu and the conformance GPU paths)");
         }
     }
+    // Report order: the CPU build, then the GPU paths in the order they are known.
+    const auto asked = [&wanted](const std::string& name) {
+        return std::find(wanted.begin(), wanted.end(), name) != wanted.end();
+    };
+    std::vector<std::string> ordered;
+    if (asked("cpu"))
+    {
+        ordered.push_back("cpu");
+    }
+    for (const std::string& name : known_gpu)
+    {
+        if (asked(name))
+        {
+            ordered.push_back(name);
+        }
+    }
+    return ordered;
+}
+
+StabilityReport run_stability(const std::vector<StabilityCase>& cases, const StabilityOptions& options)
+{
+    const std::vector<std::string> wanted = stability_paths(options);
+    const std::vector<std::string> known_gpu = known_conformance_paths();
     StabilityReport report =
         run_stability_cpu(cases, options, std::find(wanted.begin(), wanted.end(), "cpu") != wanted.end());
 
     // Every GPU path through the one mechanism (host/checks/execution_path.h); one that cannot
-    // run here (no device, not built) is reported as skipped with the reason.
+    // run here (no device, not built) is reported as not executed, with the reason.
     ExecutionPathSettings settings;
     settings.kernel_directory = options.kernel_directory;
     settings.validation = options.validation;
@@ -77,8 +100,12 @@ StabilityReport run_stability(const std::vector<StabilityCase>& cases, const Sta
         {
             StabilityPathResult skipped;
             skipped.name = name;
-            skipped.note = std::string("skipped: ") + unavailable.what();
+            skipped.note = unavailable.what();
             report.paths.push_back(std::move(skipped));
+        }
+        if (options.on_path_finished)
+        {
+            options.on_path_finished(report.paths.back());
         }
     }
     return report;

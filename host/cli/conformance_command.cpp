@@ -1,6 +1,6 @@
 // `openpbr conformance`: every GPU path against the CPU build (host/checks/conformance.h); prints
-// the report, writes --json, --dump-cpu and --dump-dir. Exit status 0 once the report is written (the
-// report says which paths pass), 1 on errors.
+// the report, ending with the verdict line (host/checks/path_verdict.h), and writes --json, --dump-cpu and
+// --dump-dir. Exit status 0 once the report is written (the verdict says which paths pass), 1 on errors.
 #include <iostream>
 #include <string>
 #include <vector>
@@ -65,12 +65,13 @@ CLI::App* add_conformance_subcommand(CLI::App& parent, const CommandContext& con
             const auto materials =
                 conformance_materials(load_materials(settings->material_files, context.materials_directory));
             const ConformanceReport report = run_conformance(materials, options);
-            std::cout << to_text(report);
+            // The JSON first, so that the report's last line is the verdict.
             if (!settings->json_path.empty())
             {
                 write_json_file(settings->json_path, to_json(report));
                 std::cout << "wrote " << settings->json_path << "\n";
             }
+            std::cout << to_text(report);
             return 0;
         });
     });

@@ -1,12 +1,15 @@
 // `openpbr stability`: the hard-case corpus on the CPU build and every GPU path
-// (host/checks/stability.h). Prints the text report and writes --json. Exit status 2 when any
-// path produced a non-finite or negative output, 1 on errors (e.g. a bad corpus).
+// (host/checks/stability.h). Prints the text report as the run goes (the header and the paths
+// to run, each path's block as it finishes, the volume checks, the verdict line last) and writes
+// --json. Exit status 2 when any path produced a non-finite or negative output or a volume check
+// failed, 1 on errors (e.g. a bad corpus).
 #include "host/cli/command.h"
 
 #include <fstream>
 #include <iostream>
 #include <memory>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "host/checks/stability.h"
@@ -59,14 +62,28 @@ CLI::App* add_stability_subcommand(CLI::App& parent, const CommandContext& conte
                 std::cout << "wrote " << count << " seed inputs to " << settings->fuzz_corpus << "\n";
                 return 0;
             }
-            settings->options.kernel_directory = context.kernel_directory;
-            const StabilityReport report = run_stability(cases, settings->options);
-            std::cout << to_text(report);
+            StabilityOptions options = settings->options;
+            options.kernel_directory = context.kernel_directory;
+            // What the run does, then each path's block as it finishes, flushed: to a terminal or
+            // to a log file alike (a run at the defaults takes minutes per path).
+            const std::vector<std::string> paths = stability_paths(options);
+            std::cout << stability_header_text(run_stability_cpu(cases, options, false));
+            std::cout << "  running " << paths.size() << (paths.size() == 1 ? " path" : " paths")
+                      << ", each reported as it finishes:";
+            for (std::size_t index = 0; index < paths.size(); ++index)
+            {
+                std::cout << (index == 0 ? " " : ", ") << paths[index];
+            }
+            std::cout << std::endl;
+            options.on_path_finished = [](const StabilityPathResult& path) { std::cout << to_text(path) << std::flush; };
+            const StabilityReport report = run_stability(cases, options);
+            std::cout << stability_volume_text(report);
             if (!settings->json.empty())
             {
                 write_json_file(settings->json, to_json(report));
                 std::cout << "wrote " << settings->json << "\n";
             }
+            std::cout << verdict_line(stability_verdict(report)) << std::endl;
             if (has_violations(report))
             {
                 std::cerr << "openpbr stability: non-finite or negative outputs found\n";

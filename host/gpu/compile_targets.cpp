@@ -146,6 +146,193 @@ CompiledFile record(const std::string& target, const std::string& description, c
     return file;
 }
 
+// The targets asked for (none: "all"), "all" expanded, each once, in the order first named; an
+// unknown name throws std::invalid_argument naming the known ones.
+std::vector<std::string> expand_targets(const std::vector<std::string>& requested)
+{
+    std::vector<std::string> targets;
+    for (const std::string& target : requested.empty() ? std::vector<std::string>{"all"} : requested)
+    {
+        const std::vector<std::string> expanded =
+            target == "all" ? compile_target_names() : std::vector<std::string>{target};
+        for (const std::string& name : expanded)
+        {
+            extension_of(name);
+            if (std::find(targets.begin(), targets.end(), name) == targets.end())
+            {
+                targets.push_back(name);
+            }
+        }
+    }
+    return targets;
+}
+
+// Slang's outputs, one entry point at a time for each group of targets that take the same
+// defines (slang_command): with slangc.mjs one process writes the whole group (-target a,b
+// -o DIR -name NAME writes DIR/NAME.<ext>, moved here into each target's folder), since the
+// WebAssembly compiler is loaded and started once per process: the conformance kernel for
+// spirv, metal, glsl and wgsl in one process took 6.8 s of CPU against 4.5 s for spirv alone
+// (2026-11-27), and the files are byte for byte those of one process per target. A native
+// slangc (options.slangc) runs once per target.
+struct SlangEntry
+{
+    const char* description;
+    const char* entry;
+    fs::path source_file;
+    const char* output_name;  // file name without the extension
+    // The render kernel: WGSL only, with every toggle an `override`; a driver that compiles
+    // overrides unfolded (SwiftShader) builds kernels faster specialized when generated
+    // (slangc.mjs -D OPENPBR_FEATURE_<NAME>=0; docs/specialization.md "WGSL: overrides or folded when generated").
+    bool wgsl_only;
+};
+
+std::vector<SlangEntry> slang_entries(const fs::path& source)
+{
+    const fs::path kernels = source / "targets" / "kernels";
+    return {
+        {"conformance kernel (Slang)", "conformance_main", kernels / "conformance.slang", "conformance.slang", false},
+        {"example shade_batch (Slang)", "shade_batch", source / "examples" / "shade_batch.slang", "shade_batch", false},
+        {"render kernel (Slang)", "render_main", kernels / "render.slang", "render.slang", true},
+    };
+}
+
+// The targets in groups that one slangc.mjs process compiles together (same defines), in the
+// order first met; with a native slangc every target is a group of its own.
+std::vector<std::vector<std::string>> slang_groups(const CompileTargetsOptions& options,
+                                                   const std::vector<std::string>& targets)
+{
+    std::vector<std::vector<std::string>> groups;
+    for (const std::string& target : targets)
+    {
+        const auto same_defines = [&](const std::vector<std::string>& group) {
+            return options.slangc.empty() && slang_defines(options, group.front()) == slang_defines(options, target);
+        };
+        const auto group = std::find_if(groups.begin(), groups.end(),
+                                        [&](std::vector<std::string>& candidate) { return same_defines(candidate); });
+        if (group == groups.end())
+        {
+            groups.push_back({target});
+        }
+        else
+        {
+            group->push_back(target);
+        }
+    }
+    return groups;
+}
+
+// One entry point for the members of one group it applies to (the render kernel: wgsl only),
+// in one Slang run; each output file is recorded in `files`.
+void compile_slang_entry(const CompileTargetsOptions& options, const SlangEntry& entry,
+                         const std::vector<std::string>& group, std::vector<CompiledFile>& files)
+{
+    std::vector<std::string> members;
+    for (const std::string& target : group)
+    {
+        if (!entry.wgsl_only || target == "wgsl")
+        {
+            members.push_back(target);
+        }
+    }
+    if (members.empty() || (options.conformance_kernels_only && std::string(entry.entry) != "conformance_main"))
+    {
+        return;
+    }
+    std::string target_list;
+    for (const std::string& target : members)
+    {
+        target_list += (target_list.empty() ? "" : ",") + target;
+    }
+    std::vector<std::string> command = slang_command(options, target_list, slang_defines(options, members.front()));
+    const fs::path shared_output =
+        fs::path(options.output_directory) / (std::string(".slang-") + entry.output_name + "-" + members.front());
+    const fs::path single_output = fs::path(options.output_directory) / members.front() /
+                                   (std::string(entry.output_name) + "." + extension_of(members.front()));
+    const fs::path slang_dir = fs::path(options.source_directory) / "slang";
+    command.insert(command.end(), {"-entry", entry.entry, "-stage", "compute", "-I", slang_dir.string()});
+    if (members.size() > 1)
+    {
+        command.insert(command.end(), {"-o", shared_output.string(), "-name", entry.output_name});
+    }
+    else
+    {
+        command.insert(command.end(), {"-o", single_output.string()});
+    }
+    command.push_back(entry.source_file.string());
+    const double seconds = run_command(command);
+    for (const std::string& target : members)
+    {
+        const std::string extension = extension_of(target);
+        const fs::path output =
+            fs::path(options.output_directory) / target / (std::string(entry.output_name) + "." + extension);
+        if (members.size() > 1)
+        {
+            fs::rename(shared_output / output.filename(), output);
+        }
+        files.push_back(record(target, entry.description, output, seconds));
+    }
+    if (members.size() > 1)
+    {
+        fs::remove_all(shared_output);
+    }
+}
+
+// The WGSL library (generate_wgsl.mjs; not with conformance_kernels_only) and the conformance
+// kernel over it, as the build makes path wgsl-library's (materials at binding 3, where every
+// conformance kernel has them).
+void generate_wgsl_library(const CompileTargetsOptions& options, std::vector<CompiledFile>& files)
+{
+    const std::string target = "wgsl";
+    const fs::path source(options.source_directory);
+    const fs::path slang_dir = source / "slang";
+    const fs::path directory = fs::path(options.output_directory) / target;
+    const fs::path generator = source / "targets" / "wgsl" / "generate_wgsl.mjs";
+    const std::vector<std::string> defines = toggle_defines(options);
+    if (!options.conformance_kernels_only)
+    {
+        const fs::path library_out = directory / "openpbr.wgsl";
+        std::vector<std::string> library = {options.node, generator.string(), "-I", slang_dir.string()};
+        library.insert(library.end(), defines.begin(), defines.end());
+        library.insert(library.end(), {"-o", library_out.string()});
+        files.push_back(record(target, "WGSL library (Slang module, plain names)", library_out, run_command(library)));
+    }
+    const fs::path library_kernel_out = directory / "conformance.library.wgsl";
+    std::vector<std::string> library_kernel = {
+        options.node, generator.string(), "-I", slang_dir.string(), "-D", "OPENPBR_WGSL_MATERIAL_BINDING=3"};
+    library_kernel.insert(library_kernel.end(), defines.begin(), defines.end());
+    library_kernel.insert(library_kernel.end(), {"-append", (source / "targets" / "wgsl" / "conformance.wgsl").string(),
+                                                 "-o", library_kernel_out.string()});
+    files.push_back(
+        record(target, "conformance kernel over the WGSL library", library_kernel_out, run_command(library_kernel)));
+}
+
+// The HLSL library (headers flattened by generate_hlsl.mjs), the conformance kernel body for it
+// and the kernel over it.
+void generate_hlsl_library(const CompileTargetsOptions& options, std::vector<CompiledFile>& files)
+{
+    const std::string target = "hlsl";
+    const fs::path source(options.source_directory);
+    const fs::path slang_dir = source / "slang";
+    const fs::path directory = fs::path(options.output_directory) / target;
+    const fs::path generator = source / "targets" / "hlsl" / "generate_hlsl.mjs";
+    const fs::path library_in = source / "targets" / "hlsl" / "openpbr.hlsl.in";
+    const fs::path library_out = directory / "openpbr.hlsl";
+    const std::vector<std::string> defines = toggle_defines(options);
+    std::vector<std::string> library = {options.node, generator.string(), "-preset", "hlsl", "-I", slang_dir.string()};
+    library.insert(library.end(), defines.begin(), defines.end());
+    library.insert(library.end(), {"-o", library_out.string(), library_in.string()});
+    files.push_back(record(target, "HLSL library (headers, flattened)", library_out, run_command(library)));
+    const fs::path body_out = directory / "openpbr_conformance_kernel.hlsl";
+    std::vector<std::string> body = {options.node, generator.string(), "-preset", "hlsl", "-I", slang_dir.string()};
+    body.insert(body.end(), defines.begin(), defines.end());
+    body.insert(body.end(), {"-provided", library_in.string(), "-o", body_out.string(),
+                             (source / "targets" / "kernels" / "openpbr_conformance_kernel.h").string()});
+    files.push_back(record(target, "conformance kernel body for the HLSL library", body_out, run_command(body)));
+    const fs::path kernel_copy = directory / "conformance.hlsl";
+    fs::copy_file(source / "targets" / "hlsl" / "conformance.hlsl", kernel_copy, fs::copy_options::overwrite_existing);
+    files.push_back(record(target, "conformance kernel over the HLSL library", kernel_copy, 0.0));
+}
+
 }  // namespace
 
 const std::vector<std::string>& compile_target_names()
@@ -176,172 +363,29 @@ std::vector<CompiledFile> compile_targets(const CompileTargetsOptions& options)
     {
         throw std::invalid_argument("no output directory");
     }
-    std::vector<std::string> targets;
-    for (const std::string& target : options.targets.empty() ? std::vector<std::string>{"all"} : options.targets)
-    {
-        const std::vector<std::string> expanded =
-            target == "all" ? compile_target_names() : std::vector<std::string>{target};
-        for (const std::string& name : expanded)
-        {
-            extension_of(name);
-            if (std::find(targets.begin(), targets.end(), name) == targets.end())
-            {
-                targets.push_back(name);
-            }
-        }
-    }
-
-    const fs::path source(options.source_directory);
-    const fs::path slang_dir = source / "slang";
-    const fs::path conformance = source / "targets" / "kernels" / "conformance.slang";
-    const fs::path example = source / "examples" / "shade_batch.slang";
-    std::vector<CompiledFile> files;
-
-    // Slang's outputs, one entry point at a time for each group of targets that take the same
-    // defines (slang_command): with slangc.mjs one process writes the whole group (-target a,b
-    // -o DIR -name NAME writes DIR/NAME.<ext>, moved here into each target's folder), since the
-    // WebAssembly compiler is loaded and started once per process: the conformance kernel for
-    // spirv, metal, glsl and wgsl in one process took 6.8 s of CPU against 4.5 s for spirv alone
-    // (2026-11-27), and the files are byte for byte those of one process per target. A native
-    // slangc (options.slangc) runs once per target.
-    struct SlangEntry
-    {
-        const char* description;
-        const char* entry;
-        fs::path source_file;
-        const char* output_name;  // file name without the extension
-        // The render kernel: WGSL only, with every toggle an `override`; a driver that compiles
-        // overrides unfolded (SwiftShader) builds kernels faster specialized when generated
-        // (slangc.mjs -D OPENPBR_FEATURE_<NAME>=0; README "WebGPU").
-        bool wgsl_only;
-    };
-    const SlangEntry entries[] = {
-        {"conformance kernel (Slang)", "conformance_main", conformance, "conformance.slang", false},
-        {"example shade_batch (Slang)", "shade_batch", example, "shade_batch", false},
-        {"render kernel (Slang)", "render_main", source / "targets" / "kernels" / "render.slang", "render.slang", true},
-    };
-    std::vector<std::vector<std::string>> groups;
+    const std::vector<std::string> targets = expand_targets(options.targets);
     for (const std::string& target : targets)
     {
         fs::create_directories(fs::path(options.output_directory) / target);
-        const auto same_defines = [&](const std::vector<std::string>& group) {
-            return options.slangc.empty() && slang_defines(options, group.front()) == slang_defines(options, target);
-        };
-        const auto group = std::find_if(groups.begin(), groups.end(),
-                                        [&](std::vector<std::string>& candidate) { return same_defines(candidate); });
-        if (group == groups.end())
-        {
-            groups.push_back({target});
-        }
-        else
-        {
-            group->push_back(target);
-        }
     }
-    for (const SlangEntry& entry : entries)
+    std::vector<CompiledFile> files;
+    const std::vector<std::vector<std::string>> groups = slang_groups(options, targets);
+    for (const SlangEntry& entry : slang_entries(options.source_directory))
     {
         for (const std::vector<std::string>& group : groups)
         {
-            std::vector<std::string> members;
-            for (const std::string& target : group)
-            {
-                if (!entry.wgsl_only || target == "wgsl")
-                {
-                    members.push_back(target);
-                }
-            }
-            if (members.empty() || (options.conformance_kernels_only && std::string(entry.entry) != "conformance_main"))
-            {
-                continue;
-            }
-            std::string target_list;
-            for (const std::string& target : members)
-            {
-                target_list += (target_list.empty() ? "" : ",") + target;
-            }
-            std::vector<std::string> command = slang_command(options, target_list, slang_defines(options, members.front()));
-            const fs::path shared_output =
-                fs::path(options.output_directory) / (std::string(".slang-") + entry.output_name + "-" + members.front());
-            const fs::path single_output = fs::path(options.output_directory) / members.front() /
-                                           (std::string(entry.output_name) + "." + extension_of(members.front()));
-            command.insert(command.end(), {"-entry", entry.entry, "-stage", "compute", "-I", slang_dir.string()});
-            if (members.size() > 1)
-            {
-                command.insert(command.end(), {"-o", shared_output.string(), "-name", entry.output_name});
-            }
-            else
-            {
-                command.insert(command.end(), {"-o", single_output.string()});
-            }
-            command.push_back(entry.source_file.string());
-            const double seconds = run_command(command);
-            for (const std::string& target : members)
-            {
-                const std::string extension = extension_of(target);
-                const fs::path output =
-                    fs::path(options.output_directory) / target / (std::string(entry.output_name) + "." + extension);
-                if (members.size() > 1)
-                {
-                    fs::rename(shared_output / output.filename(), output);
-                }
-                files.push_back(record(target, entry.description, output, seconds));
-            }
-            if (members.size() > 1)
-            {
-                fs::remove_all(shared_output);
-            }
+            compile_slang_entry(options, entry, group, files);
         }
     }
-
     for (const std::string& target : targets)
     {
-        const fs::path directory = fs::path(options.output_directory) / target;
         if (target == "wgsl")
         {
-            const fs::path generator = source / "targets" / "wgsl" / "generate_wgsl.mjs";
-            const std::vector<std::string> defines = toggle_defines(options);
-            if (!options.conformance_kernels_only)
-            {
-                const fs::path library_out = directory / "openpbr.wgsl";
-                std::vector<std::string> library = {options.node, generator.string(), "-I", slang_dir.string()};
-                library.insert(library.end(), defines.begin(), defines.end());
-                library.insert(library.end(), {"-o", library_out.string()});
-                files.push_back(
-                    record(target, "WGSL library (Slang module, plain names)", library_out, run_command(library)));
-            }
-            // The conformance kernel over the library, as the build makes path wgsl-library's
-            // (materials at binding 3, where every conformance kernel has them).
-            const fs::path library_kernel_out = directory / "conformance.library.wgsl";
-            std::vector<std::string> library_kernel = {
-                options.node, generator.string(), "-I", slang_dir.string(), "-D", "OPENPBR_WGSL_MATERIAL_BINDING=3"};
-            library_kernel.insert(library_kernel.end(), defines.begin(), defines.end());
-            library_kernel.insert(
-                library_kernel.end(),
-                {"-append", (source / "targets" / "wgsl" / "conformance.wgsl").string(), "-o", library_kernel_out.string()});
-            files.push_back(
-                record(target, "conformance kernel over the WGSL library", library_kernel_out, run_command(library_kernel)));
+            generate_wgsl_library(options, files);
         }
         if (target == "hlsl" && !options.conformance_kernels_only)
         {
-            const fs::path generator = source / "targets" / "hlsl" / "generate_hlsl.mjs";
-            const fs::path library_in = source / "targets" / "hlsl" / "openpbr.hlsl.in";
-            const fs::path library_out = directory / "openpbr.hlsl";
-            const std::vector<std::string> defines = toggle_defines(options);
-            std::vector<std::string> library = {options.node, generator.string(), "-preset", "hlsl",
-                                                "-I",         slang_dir.string()};
-            library.insert(library.end(), defines.begin(), defines.end());
-            library.insert(library.end(), {"-o", library_out.string(), library_in.string()});
-            files.push_back(record(target, "HLSL library (headers, flattened)", library_out, run_command(library)));
-            const fs::path body_out = directory / "openpbr_conformance_kernel.hlsl";
-            std::vector<std::string> body = {options.node, generator.string(), "-preset", "hlsl", "-I", slang_dir.string()};
-            body.insert(body.end(), defines.begin(), defines.end());
-            body.insert(body.end(), {"-provided", library_in.string(), "-o", body_out.string(),
-                                     (source / "targets" / "kernels" / "openpbr_conformance_kernel.h").string()});
-            files.push_back(record(target, "conformance kernel body for the HLSL library", body_out, run_command(body)));
-            const fs::path kernel_copy = directory / "conformance.hlsl";
-            fs::copy_file(source / "targets" / "hlsl" / "conformance.hlsl", kernel_copy,
-                          fs::copy_options::overwrite_existing);
-            files.push_back(record(target, "conformance kernel over the HLSL library", kernel_copy, 0.0));
+            generate_hlsl_library(options, files);
         }
     }
     return files;

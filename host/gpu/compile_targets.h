@@ -16,7 +16,7 @@
 // file is specialized when generated: the toggles outside the set compiled out, those inside on,
 // none left as a run-time constant (specialization constant, WGSL `override`, Metal function
 // constant); host/scene/features.h's specialization_defines. Without one, each target keeps its
-// run-time form (README "Feature toggles").
+// run-time form (docs/specialization.md).
 // The Slang compiler is node + targets/slangc.mjs (the Slang 2025.15 WebAssembly build), or a
 // native slangc (CMake cache variable OPENPBR_SLANGC). See targets/README.md.
 #pragma once

@@ -610,165 +610,116 @@ OPENPBR_FUNC OpenPBR_RenderPathState openpbr_render_path_begin(OPENPBR_IN(OpenPB
     return state;
 }
 
-// One step of a path: the closest hit, then a medium event, the escape, the light, or a surface
-// (emission, next-event estimation, BSDF sampling, roulette). Sets state.done when the path
-// ends; the caller stops after path.step_limit steps at the latest.
-OPENPBR_FUNC void openpbr_render_path_step(OPENPBR_IN(OpenPBR_RenderPath) path, OPENPBR_INOUT(OpenPBR_RenderPathState) state)
+// What a ray of a step meets first.
+struct OpenPBR_RenderHit
 {
-    const uint step = state.step;
-    state.step = step + 1u;
-    const OpenPBR_HomogeneousVolume medium =
-        openpbr_render_medium_volume(path.cell_index, openpbr_render_top_object(state.inside_set));
-    // Closest hit among the objects, the ground and the light (the last two only from outside
-    // every object).
+    uint kind;  // OPENPBR_RENDER_HIT_*
+    float t;    // distance along the ray; OPENPBR_RENDER_FLOAT_MAX for none
+    uint slot;  // the object hit (kind OPENPBR_RENDER_HIT_OBJECT), else OPENPBR_RENDER_MAX_OBJECTS
+};
+
+// Closest hit among the objects, the ground and the light (the last two only from outside
+// every object).
+OPENPBR_FUNC OpenPBR_RenderHit openpbr_render_closest_hit(OPENPBR_IN(OpenPBR_RenderPath) path,
+                                                          OPENPBR_IN(OpenPBR_RenderPathState) state)
+{
     const bool in_medium = state.inside_set != 0u;
     const OpenPBR_RenderObjectHit object_hit =
         openpbr_render_intersect_objects(state.origin, state.direction, path.cell_index, path.object_count);
-    uint hit = OPENPBR_RENDER_HIT_NONE;
-    float t_hit = OPENPBR_RENDER_FLOAT_MAX;
+    OpenPBR_RenderHit hit;
+    hit.kind = OPENPBR_RENDER_HIT_NONE;
+    hit.t = OPENPBR_RENDER_FLOAT_MAX;
+    hit.slot = object_hit.slot;
     if (object_hit.slot < OPENPBR_RENDER_MAX_OBJECTS)
     {
-        hit = OPENPBR_RENDER_HIT_OBJECT;
-        t_hit = object_hit.t;
+        hit.kind = OPENPBR_RENDER_HIT_OBJECT;
+        hit.t = object_hit.t;
     }
     if (path.has_ground && !in_medium)
     {
         const float t = openpbr_render_intersect_ground(state.origin, state.direction, path.ground_y, 0.0f);
-        if (t > 0.0f && t < t_hit)
+        if (t > 0.0f && t < hit.t)
         {
-            hit = OPENPBR_RENDER_HIT_GROUND;
-            t_hit = t;
+            hit.kind = OPENPBR_RENDER_HIT_GROUND;
+            hit.t = t;
         }
     }
     if (path.has_light && !in_medium)
     {
         const float t =
             openpbr_render_intersect_sphere(state.origin, state.direction, path.light_center, path.light_radius, 0.0f);
-        if (t > 0.0f && t < t_hit)
+        if (t > 0.0f && t < hit.t)
         {
-            hit = OPENPBR_RENDER_HIT_LIGHT;
-            t_hit = t;
+            hit.kind = OPENPBR_RENDER_HIT_LIGHT;
+            hit.t = t;
         }
     }
-    if (step == 0u)
-    {
-        state.hit_object = hit == OPENPBR_RENDER_HIT_OBJECT;
-    }
-    if (in_medium && hit != OPENPBR_RENDER_HIT_OBJECT)
-    {
-        state.done = true;
-        return;  // lost the interior to rounding: end the path (no light gained)
-    }
+    return hit;
+}
 
-    // Interior medium: free flight to the next scattering event or to the surface.
-    if (in_medium && medium.is_present)
+// Russian roulette: the path survives with probability max(throughput) capped at 1, its
+// throughput divided by that; otherwise it ends.
+OPENPBR_FUNC void openpbr_render_roulette(uint path_key, OPENPBR_INOUT(OpenPBR_RenderPathState) state, uint step)
+{
+    const float survival = min(openpbr_max3(state.throughput), 1.0f);
+    if (!(openpbr_render_random(path_key, step, OPENPBR_RENDER_DIMENSION_ROULETTE) < survival))
     {
-        const OpenPBR_VolumeDistanceSample flight = openpbr_volume_sample_distance(
-            medium, state.throughput, t_hit, openpbr_render_random(path.key, step, OPENPBR_RENDER_DIMENSION_VOLUME),
-            openpbr_render_random(path.key, step, OPENPBR_RENDER_DIMENSION_VOLUME + 1u));
-        state.throughput = state.throughput * flight.weight;
-        if (flight.scattered)
-        {
-            state.volume_events += 1u;
-            if (state.volume_events > path.max_volume_events)
-            {
-                state.done = true;
-                return;
-            }
-            state.origin = state.origin + state.direction * flight.distance;
-            const float cos_theta = openpbr_henyey_greenstein_sample_cos_theta(
-                medium.anisotropy, openpbr_render_random(path.key, step, OPENPBR_RENDER_DIMENSION_VOLUME + 2u));
-            const float sin_theta = sqrt(max(1.0f - cos_theta * cos_theta, 0.0f));
-            const float phi =
-                OPENPBR_RENDER_TWO_PI * openpbr_render_random(path.key, step, OPENPBR_RENDER_DIMENSION_VOLUME + 3u);
-            const OpenPBR_Basis frame = openpbr_make_basis(state.direction);
-            state.direction =
-                normalize(openpbr_to_world(frame, vec3(sin_theta * cos(phi), sin_theta * sin(phi), cos_theta)));
-            state.previous_candidates = 0u;
-            if (!openpbr_render_is_finite(state.throughput))
-            {
-                state.nonfinite = true;
-                state.done = true;
-                return;
-            }
-            if (state.volume_events >= path.roulette_depth)
-            {
-                const float survival = min(openpbr_max3(state.throughput), 1.0f);
-                if (!(openpbr_render_random(path.key, step, OPENPBR_RENDER_DIMENSION_ROULETTE) < survival))
-                {
-                    state.done = true;
-                    return;
-                }
-                state.throughput = state.throughput / survival;
-            }
-            return;
-        }
-    }
-
-    if (hit == OPENPBR_RENDER_HIT_NONE)
-    {
-        state.radiance = state.radiance + state.throughput * openpbr_render_environment(state.direction, path.flags);
         state.done = true;
         return;
     }
-    const float previous_selection = openpbr_render_emitter_selection(state.previous_candidates);
-    if (hit == OPENPBR_RENDER_HIT_LIGHT)
+    state.throughput = state.throughput / survival;
+}
+
+// Free flight in the medium the path is in, towards the surface at t_hit: the flight's weight,
+// then either a scattering event before the surface (a new direction from the Henyey-Greenstein
+// phase function, roulette after RR_DEPTH events; returns true: the step is over) or the
+// surface reached (returns false: the step goes on there).
+OPENPBR_FUNC bool openpbr_render_medium_flight(OPENPBR_IN(OpenPBR_RenderPath) path,
+                                               OPENPBR_INOUT(OpenPBR_RenderPathState) state,
+                                               OPENPBR_IN(OpenPBR_HomogeneousVolume) medium, float t_hit, uint step)
+{
+    const OpenPBR_VolumeDistanceSample flight = openpbr_volume_sample_distance(
+        medium, state.throughput, t_hit, openpbr_render_random(path.key, step, OPENPBR_RENDER_DIMENSION_VOLUME),
+        openpbr_render_random(path.key, step, OPENPBR_RENDER_DIMENSION_VOLUME + 1u));
+    state.throughput = state.throughput * flight.weight;
+    if (!flight.scattered)
     {
-        const float weight =
-            (state.previous_candidates & OPENPBR_RENDER_EMITTER_LIGHT) != 0u
-                ? openpbr_render_power_heuristic(
-                      state.previous_pdf, previous_selection * openpbr_render_cone_pdf(state.previous_position,
-                                                                                       path.light_center, path.light_radius))
-                : 1.0f;
-        state.radiance = state.radiance + state.throughput * path.light_radiance * weight;
+        return false;
+    }
+    state.volume_events += 1u;
+    if (state.volume_events > path.max_volume_events)
+    {
         state.done = true;
-        return;
+        return true;
     }
+    state.origin = state.origin + state.direction * flight.distance;
+    const float cos_theta = openpbr_henyey_greenstein_sample_cos_theta(
+        medium.anisotropy, openpbr_render_random(path.key, step, OPENPBR_RENDER_DIMENSION_VOLUME + 2u));
+    const float sin_theta = sqrt(max(1.0f - cos_theta * cos_theta, 0.0f));
+    const float phi = OPENPBR_RENDER_TWO_PI * openpbr_render_random(path.key, step, OPENPBR_RENDER_DIMENSION_VOLUME + 3u);
+    const OpenPBR_Basis frame = openpbr_make_basis(state.direction);
+    state.direction = normalize(openpbr_to_world(frame, vec3(sin_theta * cos(phi), sin_theta * sin(phi), cos_theta)));
+    state.previous_candidates = 0u;
+    if (!openpbr_render_is_finite(state.throughput))
+    {
+        state.nonfinite = true;
+        state.done = true;
+        return true;
+    }
+    if (state.volume_events >= path.roulette_depth)
+    {
+        openpbr_render_roulette(path.key, state, step);
+    }
+    return true;
+}
 
-    // Surface interaction: geometric normal = shading normal.
-    const vec3 position = state.origin + state.direction * t_hit;
-    const bool on_object = hit == OPENPBR_RENDER_HIT_OBJECT;
-    const uint slot = object_hit.slot;
-    const vec3 normal =
-        on_object ? normalize(position - openpbr_render_object_center(path.cell_index, slot)) : vec3(0.0f, 1.0f, 0.0f);
-    const bool encloses =
-        on_object && openpbr_render_object_float(path.cell_index, slot, OPENPBR_RENDER_OBJECT_ENCLOSES) != 0.0f;
-    const uint slot_bit = on_object ? (1u << slot) : 0u;
-    // The medium outside this surface: the entered object of highest priority other than
-    // the one hit (the environment when there is none).
-    const uint outside_object = openpbr_render_top_object(state.inside_set & ~slot_bit);
-    if (on_object && outside_object < OPENPBR_RENDER_MAX_OBJECTS && outside_object > slot)
-    {
-        // A false hit: the surface lies inside a medium of higher priority, which continues
-        // on both sides. Straight on; only the membership of the object hit changes.
-        const float crossing = dot(state.direction, normal);
-        if (encloses)
-        {
-            state.inside_set = crossing < 0.0f ? (state.inside_set | slot_bit) : (state.inside_set & ~slot_bit);
-        }
-        state.origin = position + normal * (crossing >= 0.0f ? path.epsilon : -path.epsilon);
-        return;
-    }
-    const float exterior_ior = on_object ? openpbr_render_medium_ior(path.cell_index, outside_object) : 1.0f;
-    OpenPBR_ResolvedInputs inputs = path.sphere_inputs;
-    if (!on_object)
-    {
-        inputs = openpbr_render_unpack_material(path.ground_material);
-        const float parity = fract(0.5f * (floor(position.x / path.checker_size) + floor(position.z / path.checker_size)));
-        inputs.base_color = inputs.base_color * (parity < 0.25f ? 1.0f : path.checker_dark);
-    }
-    else if (slot != 0u)
-    {
-        inputs = openpbr_render_unpack_material(
-            uint(openpbr_render_object_float(path.cell_index, slot, OPENPBR_RENDER_OBJECT_MATERIAL)));
-    }
-    inputs.geometry_basis = openpbr_make_basis(normal);
-    inputs.geometry_coat_basis = inputs.geometry_basis;
-    const vec3 view = -state.direction;
-    const OpenPBR_PreparedBsdf bsdf =
-        openpbr_prepare(inputs, view, on_object ? path.wavelengths : path.ground_wavelengths, exterior_ior);
-
-    if (on_object && slot == 0u && path.sphere_emissive)
+// Emission of the object hit: the cell's first object, a next-event target, weighted by MIS
+// against the previous vertex's next-event estimation; an inner object in full.
+OPENPBR_FUNC void openpbr_render_add_emission(OPENPBR_IN(OpenPBR_RenderPath) path,
+                                              OPENPBR_INOUT(OpenPBR_RenderPathState) state, vec3 emission, uint slot,
+                                              float previous_selection)
+{
+    if (slot == 0u && path.sphere_emissive)
     {
         const float weight = (state.previous_candidates & OPENPBR_RENDER_EMITTER_SPHERE) != 0u
                                  ? openpbr_render_power_heuristic(
@@ -776,68 +727,71 @@ OPENPBR_FUNC void openpbr_render_path_step(OPENPBR_IN(OpenPBR_RenderPath) path, 
                                        previous_selection * openpbr_render_cone_pdf(state.previous_position,
                                                                                     path.sphere_center, path.sphere_radius))
                                  : 1.0f;
-        state.radiance = state.radiance + state.throughput * bsdf.emission * (path.nits_to_units * weight);
+        state.radiance = state.radiance + state.throughput * emission * (path.nits_to_units * weight);
     }
-    else if (on_object && slot != 0u)
+    else if (slot != 0u)
     {
         // Inner objects are not next-event targets: their emission counts in full.
-        state.radiance = state.radiance + state.throughput * bsdf.emission * path.nits_to_units;
+        state.radiance = state.radiance + state.throughput * emission * path.nits_to_units;
     }
+}
 
-    state.surface_events += 1u;
-    if (state.surface_events > path.max_depth)
+// Next-event estimation towards one of the candidate emitters (also from the interface seen
+// from inside: rough interfaces then transmit the light in; delta lobes give eval = 0). Every
+// object of the cell occludes, except the emitting object when it is the target.
+OPENPBR_FUNC void openpbr_render_next_event(OPENPBR_IN(OpenPBR_RenderPath) path,
+                                            OPENPBR_INOUT(OpenPBR_RenderPathState) state,
+                                            OPENPBR_IN(OpenPBR_PreparedBsdf) bsdf, vec3 position, vec3 normal,
+                                            uint candidates, uint step)
+{
+    const float selection = openpbr_render_emitter_selection(candidates);
+    const float u_emitter = openpbr_render_random(path.key, step, OPENPBR_RENDER_DIMENSION_EMITTER_U);
+    const bool pick_sphere =
+        candidates == OPENPBR_RENDER_EMITTER_SPHERE ||
+        (candidates == (OPENPBR_RENDER_EMITTER_LIGHT | OPENPBR_RENDER_EMITTER_SPHERE) && u_emitter < 0.5f);
+    const vec3 emitter_center = pick_sphere ? path.sphere_center : path.light_center;
+    const float emitter_radius = pick_sphere ? path.sphere_radius : path.light_radius;
+    const OpenPBR_RenderCone cone =
+        openpbr_render_sample_cone(position, emitter_center, emitter_radius,
+                                   vec2(openpbr_render_random(path.key, step, OPENPBR_RENDER_DIMENSION_LIGHT_U),
+                                        openpbr_render_random(path.key, step, OPENPBR_RENDER_DIMENSION_LIGHT_V)));
+    if (!cone.valid)
     {
-        state.done = true;
         return;
     }
-
-    // Next-event estimation towards one emitter (also from the interface seen from inside:
-    // rough interfaces then transmit the light in; delta lobes give eval = 0). Every object
-    // of the cell occludes, except the emitting object when it is the target.
-    const uint candidates = (path.has_light ? OPENPBR_RENDER_EMITTER_LIGHT : 0u) |
-                            (!on_object && path.sphere_emissive ? OPENPBR_RENDER_EMITTER_SPHERE : 0u);
-    if (candidates != 0u)
+    const OpenPBR_DiffuseSpecular value = openpbr_eval(bsdf, cone.direction);
+    const vec3 f = value.diffuse + value.specular;
+    if (!(openpbr_max3(f) > 0.0f))
     {
-        const float selection = openpbr_render_emitter_selection(candidates);
-        const float u_emitter = openpbr_render_random(path.key, step, OPENPBR_RENDER_DIMENSION_EMITTER_U);
-        const bool pick_sphere =
-            candidates == OPENPBR_RENDER_EMITTER_SPHERE ||
-            (candidates == (OPENPBR_RENDER_EMITTER_LIGHT | OPENPBR_RENDER_EMITTER_SPHERE) && u_emitter < 0.5f);
-        const vec3 emitter_center = pick_sphere ? path.sphere_center : path.light_center;
-        const float emitter_radius = pick_sphere ? path.sphere_radius : path.light_radius;
-        const OpenPBR_RenderCone cone =
-            openpbr_render_sample_cone(position, emitter_center, emitter_radius,
-                                       vec2(openpbr_render_random(path.key, step, OPENPBR_RENDER_DIMENSION_LIGHT_U),
-                                            openpbr_render_random(path.key, step, OPENPBR_RENDER_DIMENSION_LIGHT_V)));
-        if (cone.valid)
-        {
-            const OpenPBR_DiffuseSpecular value = openpbr_eval(bsdf, cone.direction);
-            const vec3 f = value.diffuse + value.specular;
-            if (openpbr_max3(f) > 0.0f)
-            {
-                vec3 emitted = path.light_radiance;
-                if (pick_sphere)
-                {
-                    OpenPBR_ResolvedInputs emitter_inputs = path.sphere_inputs;
-                    emitter_inputs.geometry_basis =
-                        openpbr_make_basis(normalize(position + cone.direction * cone.distance - path.sphere_center));
-                    emitter_inputs.geometry_coat_basis = emitter_inputs.geometry_basis;
-                    emitted = openpbr_prepare_emission(emitter_inputs, -cone.direction) * path.nits_to_units;
-                }
-                const float facing = dot(cone.direction, normal) >= 0.0f ? 1.0f : -1.0f;
-                const vec3 shadow_origin = position + normal * (facing * path.epsilon);
-                if (!openpbr_render_occluded(shadow_origin, cone.direction, cone.distance, path.cell_index,
-                                             pick_sphere ? 0u : path.object_count, path.radius, path.flags))
-                {
-                    const float light_pdf = selection * cone.pdf;
-                    const float weight = openpbr_render_power_heuristic(light_pdf, openpbr_pdf(bsdf, cone.direction));
-                    state.radiance = state.radiance + state.throughput * f * emitted * (weight / light_pdf);
-                }
-            }
-        }
+        return;
     }
+    vec3 emitted = path.light_radiance;
+    if (pick_sphere)
+    {
+        OpenPBR_ResolvedInputs emitter_inputs = path.sphere_inputs;
+        emitter_inputs.geometry_basis =
+            openpbr_make_basis(normalize(position + cone.direction * cone.distance - path.sphere_center));
+        emitter_inputs.geometry_coat_basis = emitter_inputs.geometry_basis;
+        emitted = openpbr_prepare_emission(emitter_inputs, -cone.direction) * path.nits_to_units;
+    }
+    const float facing = dot(cone.direction, normal) >= 0.0f ? 1.0f : -1.0f;
+    const vec3 shadow_origin = position + normal * (facing * path.epsilon);
+    if (!openpbr_render_occluded(shadow_origin, cone.direction, cone.distance, path.cell_index,
+                                 pick_sphere ? 0u : path.object_count, path.radius, path.flags))
+    {
+        const float light_pdf = selection * cone.pdf;
+        const float weight = openpbr_render_power_heuristic(light_pdf, openpbr_pdf(bsdf, cone.direction));
+        state.radiance = state.radiance + state.throughput * f * emitted * (weight / light_pdf);
+    }
+}
 
-    // Continue by sampling the BSDF.
+// The path goes on by sampling the BSDF: the new direction, the medium stack across the
+// surface, the MIS state of this vertex, then roulette after RR_DEPTH surface events.
+OPENPBR_FUNC void openpbr_render_continue_path(OPENPBR_IN(OpenPBR_RenderPath) path,
+                                               OPENPBR_INOUT(OpenPBR_RenderPathState) state,
+                                               OPENPBR_IN(OpenPBR_PreparedBsdf) bsdf, vec3 position, vec3 normal,
+                                               bool encloses, uint slot_bit, uint candidates, uint step)
+{
     const OpenPBR_BsdfSample bsdf_sample =
         openpbr_sample(bsdf, vec3(openpbr_render_random(path.key, step, OPENPBR_RENDER_DIMENSION_BSDF),
                                   openpbr_render_random(path.key, step, OPENPBR_RENDER_DIMENSION_BSDF + 1u),
@@ -867,17 +821,127 @@ OPENPBR_FUNC void openpbr_render_path_step(OPENPBR_IN(OpenPBR_RenderPath) path, 
     }
     state.origin = position + normal * (going >= 0.0f ? path.epsilon : -path.epsilon);
     state.direction = bsdf_sample.direction;
-
     if (state.surface_events >= path.roulette_depth)
     {
-        const float survival = min(openpbr_max3(state.throughput), 1.0f);
-        if (!(openpbr_render_random(path.key, step, OPENPBR_RENDER_DIMENSION_ROULETTE) < survival))
-        {
-            state.done = true;
-            return;
-        }
-        state.throughput = state.throughput / survival;
+        openpbr_render_roulette(path.key, state, step);
     }
+}
+
+// A surface hit (an object or the ground): a false hit inside a medium of higher priority goes
+// straight on; otherwise the surface's BSDF between the media on its two sides gives its
+// emission, the next-event estimation and the next direction.
+OPENPBR_FUNC void openpbr_render_surface(OPENPBR_IN(OpenPBR_RenderPath) path, OPENPBR_INOUT(OpenPBR_RenderPathState) state,
+                                         OPENPBR_IN(OpenPBR_RenderHit) hit, float previous_selection, uint step)
+{
+    // Geometric normal = shading normal.
+    const vec3 position = state.origin + state.direction * hit.t;
+    const bool on_object = hit.kind == OPENPBR_RENDER_HIT_OBJECT;
+    const uint slot = hit.slot;
+    const vec3 normal =
+        on_object ? normalize(position - openpbr_render_object_center(path.cell_index, slot)) : vec3(0.0f, 1.0f, 0.0f);
+    const bool encloses =
+        on_object && openpbr_render_object_float(path.cell_index, slot, OPENPBR_RENDER_OBJECT_ENCLOSES) != 0.0f;
+    const uint slot_bit = on_object ? (1u << slot) : 0u;
+    // The medium outside this surface: the entered object of highest priority other than
+    // the one hit (the environment when there is none).
+    const uint outside_object = openpbr_render_top_object(state.inside_set & ~slot_bit);
+    if (on_object && outside_object < OPENPBR_RENDER_MAX_OBJECTS && outside_object > slot)
+    {
+        // A false hit: the surface lies inside a medium of higher priority, which continues
+        // on both sides. Straight on; only the membership of the object hit changes.
+        const float crossing = dot(state.direction, normal);
+        if (encloses)
+        {
+            state.inside_set = crossing < 0.0f ? (state.inside_set | slot_bit) : (state.inside_set & ~slot_bit);
+        }
+        state.origin = position + normal * (crossing >= 0.0f ? path.epsilon : -path.epsilon);
+        return;
+    }
+    const float exterior_ior = on_object ? openpbr_render_medium_ior(path.cell_index, outside_object) : 1.0f;
+    // The ground's material with its checker, or the object's.
+    OpenPBR_ResolvedInputs inputs = path.sphere_inputs;
+    if (!on_object)
+    {
+        inputs = openpbr_render_unpack_material(path.ground_material);
+        const float parity = fract(0.5f * (floor(position.x / path.checker_size) + floor(position.z / path.checker_size)));
+        inputs.base_color = inputs.base_color * (parity < 0.25f ? 1.0f : path.checker_dark);
+    }
+    else if (slot != 0u)
+    {
+        inputs = openpbr_render_unpack_material(
+            uint(openpbr_render_object_float(path.cell_index, slot, OPENPBR_RENDER_OBJECT_MATERIAL)));
+    }
+    inputs.geometry_basis = openpbr_make_basis(normal);
+    inputs.geometry_coat_basis = inputs.geometry_basis;
+    const vec3 view = -state.direction;
+    const OpenPBR_PreparedBsdf bsdf =
+        openpbr_prepare(inputs, view, on_object ? path.wavelengths : path.ground_wavelengths, exterior_ior);
+    if (on_object)
+    {
+        openpbr_render_add_emission(path, state, bsdf.emission, slot, previous_selection);
+    }
+
+    state.surface_events += 1u;
+    if (state.surface_events > path.max_depth)
+    {
+        state.done = true;
+        return;
+    }
+    const uint candidates = (path.has_light ? OPENPBR_RENDER_EMITTER_LIGHT : 0u) |
+                            (!on_object && path.sphere_emissive ? OPENPBR_RENDER_EMITTER_SPHERE : 0u);
+    if (candidates != 0u)
+    {
+        openpbr_render_next_event(path, state, bsdf, position, normal, candidates, step);
+    }
+    openpbr_render_continue_path(path, state, bsdf, position, normal, encloses, slot_bit, candidates, step);
+}
+
+// One step of a path: the closest hit, then a medium event, the escape, the light, or a surface
+// (emission, next-event estimation, BSDF sampling, roulette). Sets state.done when the path
+// ends; the caller stops after path.step_limit steps at the latest.
+OPENPBR_FUNC void openpbr_render_path_step(OPENPBR_IN(OpenPBR_RenderPath) path, OPENPBR_INOUT(OpenPBR_RenderPathState) state)
+{
+    const uint step = state.step;
+    state.step = step + 1u;
+    const OpenPBR_HomogeneousVolume medium =
+        openpbr_render_medium_volume(path.cell_index, openpbr_render_top_object(state.inside_set));
+    const bool in_medium = state.inside_set != 0u;
+    const OpenPBR_RenderHit hit = openpbr_render_closest_hit(path, state);
+    if (step == 0u)
+    {
+        state.hit_object = hit.kind == OPENPBR_RENDER_HIT_OBJECT;
+    }
+    if (in_medium && hit.kind != OPENPBR_RENDER_HIT_OBJECT)
+    {
+        state.done = true;
+        return;  // lost the interior to rounding: end the path (no light gained)
+    }
+    // Interior medium: free flight to the next scattering event or to the surface.
+    if (in_medium && medium.is_present && openpbr_render_medium_flight(path, state, medium, hit.t, step))
+    {
+        return;
+    }
+
+    if (hit.kind == OPENPBR_RENDER_HIT_NONE)
+    {
+        state.radiance = state.radiance + state.throughput * openpbr_render_environment(state.direction, path.flags);
+        state.done = true;
+        return;
+    }
+    const float previous_selection = openpbr_render_emitter_selection(state.previous_candidates);
+    if (hit.kind == OPENPBR_RENDER_HIT_LIGHT)
+    {
+        const float weight =
+            (state.previous_candidates & OPENPBR_RENDER_EMITTER_LIGHT) != 0u
+                ? openpbr_render_power_heuristic(
+                      state.previous_pdf, previous_selection * openpbr_render_cone_pdf(state.previous_position,
+                                                                                       path.light_center, path.light_radius))
+                : 1.0f;
+        state.radiance = state.radiance + state.throughput * path.light_radiance * weight;
+        state.done = true;
+        return;
+    }
+    openpbr_render_surface(path, state, hit, previous_selection, step);
 }
 
 // The sample a finished (or stopped) path gives.

@@ -133,7 +133,7 @@ function toggleNote(library) {
 
 function header(options, library) {
   const specialized = options.defines.length > 0 ? options.defines.join(' ') : 'none';
-  return `// openpbr.wgsl: the OpenPBR 1.1 surface BSDF for WebGPU (WGSL), one self-contained file generated
+  return `// openpbr.wgsl: the OpenPBR 1.1.1 surface BSDF for WebGPU (WGSL), one self-contained file generated
 // from the single-source headers by targets/wgsl/generate_wgsl.mjs (Slang's WGSL target). Do not
 // edit: regenerate. Defines it was generated with: ${specialized}.
 //
@@ -143,7 +143,7 @@ function header(options, library) {
 //   let pdf = openpbr_pdf(bsdf, light);
 //   let s = openpbr_sample(bsdf, u);                               // u: vec3<f32> in [0, 1)
 //
-// Bindings (group 0), storage buffers of f32 the application fills (README "WebGPU"):
+// Bindings (group 0), storage buffers of f32 the application fills (docs/integrating.md "WGSL for WebGPU engines"):
 //   @binding(0) openpbr_lut_data        slang/generated/openpbr_lut.bin (energy-compensation tables)
 //   @binding(1) openpbr_fuzz_ltc_data   slang/generated/openpbr_fuzz_ltc.bin (fuzz LTC table)
 //   @binding(2) openpbr_material_data   packed materials, OPENPBR_PACKED_MATERIAL_FLOATS (80) floats

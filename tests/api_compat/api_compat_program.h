@@ -1,5 +1,5 @@
 // A renderer's shading step written against the established OpenPBR-BSDF API only: every call
-// below uses the names and signatures of that API (README "Two API forms"), nothing of the
+// below uses the names and signatures of that API (docs/api.md "The established API form"), nothing of the
 // project form. The same source is compiled as C++ (api_compat_main.cpp, -Wall -Wextra
 // -Werror, run), GLSL (api_compat.comp), Slang (api_compat.slang, `import openpbr;`), HLSL
 // (api_compat.hlsl over the generated openpbr.hlsl), CUDA (api_compat_device.cu, nvcc) and Metal

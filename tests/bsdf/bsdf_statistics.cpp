@@ -13,6 +13,7 @@
 #include <limits>
 #include <map>
 #include <sstream>
+#include <utility>
 
 namespace openpbr::testing {
 
@@ -758,51 +759,44 @@ struct Cell
     std::string label;
 };
 
-}  // namespace
-
-ChiSquareResult run_chi_square_test(const SamplingTarget& target, const ChiSquareOptions& options)
+// Expected fraction of an atom: its reported pdf (the lobe's selection probability) times the
+// lobe's share of delta samples.
+double expected_atom_fraction(const SamplingTarget& target, const DeltaAtom& atom)
 {
-    const SphereGridOptions& grid = options.grid;
-    ChiSquareResult result;
-    result.sample_count = options.sample_count;
-    const double n = static_cast<double>(options.sample_count);
+    const auto share = target.delta_share.find(atom.lobe_type >> OPENPBR_LOBE_ID_SHIFT);
+    return atom.reported_pdf_mean * (share == target.delta_share.end() ? 1.0 : share->second);
+}
 
-    const std::vector<double> probabilities = integrate_pdf_over_grid(target, grid);
-    const SampleTally tally = tally_samples(target, grid, options.sample_count, options.seed);
-
-    result.continuous_count = tally.continuous;
-    result.invalid_count = tally.invalid;
-    result.nonfinite_count = tally.nonfinite;
-    result.delta_probability = target.delta_probability;
-    // Expected fraction of an atom: its reported pdf (the lobe's selection probability) times
-    // the lobe's share of delta samples.
-    const auto expected_fraction = [&](const DeltaAtom& atom) {
-        const auto share = target.delta_share.find(atom.lobe_type >> OPENPBR_LOBE_ID_SHIFT);
-        return atom.reported_pdf_mean * (share == target.delta_share.end() ? 1.0 : share->second);
-    };
+// The delta atoms into the result, with whether every atom reports one pdf and their sum
+// matches the target's delta probability.
+void record_delta_atoms(ChiSquareResult& result, const SamplingTarget& target, const SampleTally& tally,
+                        const ChiSquareOptions& options)
+{
     for (const auto& [type, atom] : tally.atoms)
     {
         result.atoms.push_back(atom);
         result.delta_count += atom.count;
-        result.delta_reported_sum += expected_fraction(atom);
+        result.delta_reported_sum += expected_atom_fraction(target, atom);
         const double spread = atom.reported_pdf_max - atom.reported_pdf_min;
         if (!(spread <= options.delta_pdf_relative_tolerance * atom.reported_pdf_max) || !(atom.reported_pdf_min > 0.0))
         {
             result.delta_pdfs_consistent = false;
         }
     }
-    // Atoms never sampled cannot report; the binomial test below catches a missing delta lobe.
+    // Atoms never sampled cannot report; the binomial test catches a missing delta lobe.
     if (!result.atoms.empty() && !(std::fabs(result.delta_reported_sum - result.delta_probability) <=
                                    options.delta_pdf_relative_tolerance * std::max(result.delta_probability, 1e-3)))
     {
         result.delta_pdfs_consistent = false;
     }
-    for (double p : probabilities)
-    {
-        result.pdf_integral += p;
-    }
+}
 
-    // Cells: the grid, one atom per delta lobe type, and "no sample".
+// Cells: the grid (labelled by their bounds; observed and expected also go to the result), one
+// atom per delta lobe type, and "no sample".
+std::vector<Cell> chi_square_cells(ChiSquareResult& result, const SamplingTarget& target, const SphereGridOptions& grid,
+                                   const std::vector<double>& probabilities, const SampleTally& tally)
+{
+    const double n = static_cast<double>(result.sample_count);
     const bool warped = target.polar_scale > 0.0;
     const PolarWarp warp(warped ? target.polar_scale : 1.0);
     const double dz = (warped ? 1.0 : 2.0) / grid.cos_theta_bins;
@@ -832,14 +826,34 @@ ChiSquareResult run_chi_square_test(const SamplingTarget& target, const ChiSquar
     }
     for (const DeltaAtom& atom : result.atoms)
     {
-        cells.push_back(
-            {static_cast<double>(atom.count), n * expected_fraction(atom), "delta " + lobe_type_string(atom.lobe_type)});
+        cells.push_back({static_cast<double>(atom.count), n * expected_atom_fraction(target, atom),
+                         "delta " + lobe_type_string(atom.lobe_type)});
     }
     const double no_sample_probability = std::max(0.0, 1.0 - result.pdf_integral - result.delta_reported_sum);
     cells.push_back({static_cast<double>(tally.invalid + tally.nonfinite), n * no_sample_probability, "no sample"});
+    return cells;
+}
 
-    // PBRT-style pooling: every cell expecting fewer than min_expected_count goes into one
-    // pool, and the pool takes the next-smallest cells until it expects enough itself.
+// The statistic over the cells after pooling, with each term and its cell for the report.
+struct ChiSquareTerms
+{
+    Cell pool{0.0, 0.0, "pool of small cells"};
+    int pooled_cell_count = 0;
+    double statistic = 0.0;
+    int terms = 0;
+    std::vector<std::pair<double, std::size_t>> contributions;  // (term, cell index), pool = npos
+
+    const Cell& cell(const std::vector<Cell>& cells, std::size_t index) const
+    {
+        return index == static_cast<std::size_t>(-1) ? pool : cells[index];
+    }
+};
+
+// PBRT-style pooling: every cell expecting fewer than min_expected_count goes into one pool, and
+// the pool takes the next-smallest cells until it expects enough itself.
+ChiSquareTerms pooled_chi_square(const std::vector<Cell>& cells, double min_expected_count)
+{
+    ChiSquareTerms terms;
     std::vector<std::size_t> order(cells.size());
     for (std::size_t i = 0; i < order.size(); ++i)
     {
@@ -847,58 +861,50 @@ ChiSquareResult run_chi_square_test(const SamplingTarget& target, const ChiSquar
     }
     std::stable_sort(order.begin(), order.end(),
                      [&](std::size_t a, std::size_t b) { return cells[a].expected < cells[b].expected; });
-    Cell pool{0.0, 0.0, "pool of small cells"};
     std::size_t first_unpooled = 0;
-    while (first_unpooled < order.size() && (cells[order[first_unpooled]].expected < options.min_expected_count ||
-                                             (pool.expected > 0.0 && pool.expected < options.min_expected_count)))
+    while (first_unpooled < order.size() && (cells[order[first_unpooled]].expected < min_expected_count ||
+                                             (terms.pool.expected > 0.0 && terms.pool.expected < min_expected_count)))
     {
-        pool.observed += cells[order[first_unpooled]].observed;
-        pool.expected += cells[order[first_unpooled]].expected;
+        terms.pool.observed += cells[order[first_unpooled]].observed;
+        terms.pool.expected += cells[order[first_unpooled]].expected;
         ++first_unpooled;
-        ++result.pooled_cell_count;
+        ++terms.pooled_cell_count;
     }
-    // Terms of the statistic, with their labels for the report.
-    std::vector<std::pair<double, std::size_t>> contributions;  // (term, cell index), pool = npos
-    double statistic = 0.0;
-    int terms = 0;
     const auto add_term = [&](const Cell& cell, std::size_t index) {
         if (cell.expected <= 0.0)
         {
             if (cell.observed > 0.0)
             {
-                statistic = std::numeric_limits<double>::infinity();
-                contributions.push_back({statistic, index});
+                terms.statistic = std::numeric_limits<double>::infinity();
+                terms.contributions.push_back({terms.statistic, index});
             }
             return;
         }
         const double difference = cell.observed - cell.expected;
         const double term = difference * difference / cell.expected;
-        statistic += term;
-        ++terms;
-        contributions.push_back({term, index});
+        terms.statistic += term;
+        ++terms.terms;
+        terms.contributions.push_back({term, index});
     };
-    if (result.pooled_cell_count > 0)
+    if (terms.pooled_cell_count > 0)
     {
-        add_term(pool, static_cast<std::size_t>(-1));
+        add_term(terms.pool, static_cast<std::size_t>(-1));
     }
     for (std::size_t i = first_unpooled; i < order.size(); ++i)
     {
         add_term(cells[order[i]], order[i]);
     }
-    result.statistic = statistic;
-    result.degrees_of_freedom = terms - 1;
-    result.p_value = std::isinf(statistic) ? 0.0 : chi_square_p_value(statistic, result.degrees_of_freedom);
-    if (std::isnan(statistic))
-    {
-        result.p_value = std::numeric_limits<double>::quiet_NaN();
-    }
+    return terms;
+}
 
-    result.delta_p_value = binomial_two_sided_p_value(result.delta_count, options.sample_count, result.delta_probability);
-    result.continuous_p_value =
-        binomial_two_sided_p_value(result.continuous_count, options.sample_count, std::clamp(result.pdf_integral, 0.0, 1.0));
-
+// The human-readable summary: counts, the binomial tests, the atoms, the statistic and the six
+// largest terms.
+std::string chi_square_report(const SamplingTarget& target, const ChiSquareResult& result, const std::vector<Cell>& cells,
+                              ChiSquareTerms terms)
+{
+    const double n = static_cast<double>(result.sample_count);
     std::ostringstream report;
-    report << std::setprecision(6) << "target '" << target.name << "': " << options.sample_count << " samples, "
+    report << std::setprecision(6) << "target '" << target.name << "': " << result.sample_count << " samples, "
            << result.continuous_count << " continuous, " << result.delta_count << " delta, " << result.invalid_count
            << " no sample, " << result.nonfinite_count << " with a bad direction\n"
            << "  pdf integral " << result.pdf_integral << " vs continuous fraction " << result.continuous_count / n
@@ -913,14 +919,50 @@ ChiSquareResult run_chi_square_test(const SamplingTarget& target, const ChiSquar
     }
     report << "  chi2 = " << result.statistic << ", dof = " << result.degrees_of_freedom << ", p = " << result.p_value
            << " (" << result.pooled_cell_count << " cells pooled)\n";
-    std::sort(contributions.begin(), contributions.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
-    for (std::size_t i = 0; i < std::min<std::size_t>(6, contributions.size()); ++i)
+    std::sort(terms.contributions.begin(), terms.contributions.end(),
+              [](const auto& a, const auto& b) { return a.first > b.first; });
+    for (std::size_t i = 0; i < std::min<std::size_t>(6, terms.contributions.size()); ++i)
     {
-        const Cell& cell = contributions[i].second == static_cast<std::size_t>(-1) ? pool : cells[contributions[i].second];
+        const Cell& cell = terms.cell(cells, terms.contributions[i].second);
         report << "    worst: " << cell.label << ": observed " << cell.observed << ", expected " << cell.expected
-               << ", term " << contributions[i].first << "\n";
+               << ", term " << terms.contributions[i].first << "\n";
     }
-    result.report = report.str();
+    return report.str();
+}
+
+}  // namespace
+
+ChiSquareResult run_chi_square_test(const SamplingTarget& target, const ChiSquareOptions& options)
+{
+    ChiSquareResult result;
+    result.sample_count = options.sample_count;
+    const std::vector<double> probabilities = integrate_pdf_over_grid(target, options.grid);
+    const SampleTally tally = tally_samples(target, options.grid, options.sample_count, options.seed);
+    result.continuous_count = tally.continuous;
+    result.invalid_count = tally.invalid;
+    result.nonfinite_count = tally.nonfinite;
+    result.delta_probability = target.delta_probability;
+    record_delta_atoms(result, target, tally, options);
+    for (double p : probabilities)
+    {
+        result.pdf_integral += p;
+    }
+
+    const std::vector<Cell> cells = chi_square_cells(result, target, options.grid, probabilities, tally);
+    ChiSquareTerms terms = pooled_chi_square(cells, options.min_expected_count);
+    result.pooled_cell_count = terms.pooled_cell_count;
+    result.statistic = terms.statistic;
+    result.degrees_of_freedom = terms.terms - 1;
+    result.p_value = std::isinf(terms.statistic) ? 0.0 : chi_square_p_value(terms.statistic, result.degrees_of_freedom);
+    if (std::isnan(terms.statistic))
+    {
+        result.p_value = std::numeric_limits<double>::quiet_NaN();
+    }
+
+    result.delta_p_value = binomial_two_sided_p_value(result.delta_count, options.sample_count, result.delta_probability);
+    result.continuous_p_value =
+        binomial_two_sided_p_value(result.continuous_count, options.sample_count, std::clamp(result.pdf_integral, 0.0, 1.0));
+    result.report = chi_square_report(target, result, cells, std::move(terms));
     return result;
 }
 

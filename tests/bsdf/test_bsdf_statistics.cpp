@@ -77,9 +77,10 @@ MaterialConfig rough_dielectric_through_one(const std::string& name, const float
     return config;
 }
 
-const std::vector<MaterialConfig>& material_configs()
+// The base alone: diffuse, specular, metal, opacity.
+std::vector<MaterialConfig> base_configs()
 {
-    static const std::vector<MaterialConfig> configs = {
+    return {
         {"lambert",
          [] {
              OpenPBR_ResolvedInputs i = defaults();
@@ -133,7 +134,13 @@ const std::vector<MaterialConfig>& material_configs()
              i.geometry_opacity = 0.5f;
              return i;
          }},
-        // Newer lobes (coat, fuzz, transmission, thin-walled).
+    };
+}
+
+// The layers above the base: coat and fuzz.
+std::vector<MaterialConfig> layer_configs()
+{
+    return {
         {"coat_glossy",
          [] {
              OpenPBR_ResolvedInputs i = defaults();
@@ -157,6 +164,13 @@ const std::vector<MaterialConfig>& material_configs()
              i.fuzz_roughness = 0.5f;
              return i;
          }},
+    };
+}
+
+// Transmission: rough, index-matched, smooth and dispersive glass, and the thin-walled lobes.
+std::vector<MaterialConfig> transmission_configs()
+{
+    return {
         {"rough_glass",
          [] {
              OpenPBR_ResolvedInputs i = defaults();
@@ -214,34 +228,51 @@ const std::vector<MaterialConfig>& material_configs()
              i.subsurface_scatter_anisotropy = 0.3f;
              return i;
          }},
-        // The whole BSDF with every lobe on at partial weight (thin film, anisotropy, a tilted
-        // coat normal, dispersion and partial opacity included), entering and leaving.
-        {"every_lobe_partial",
-         [] {
-             OpenPBR_ResolvedInputs i = defaults();
-             i.base_metalness = 0.3f;
-             i.base_diffuse_roughness = 0.5f;
-             i.specular_roughness = 0.35f;
-             i.specular_roughness_anisotropy = 0.5f;
-             i.geometry_basis = tilted_basis();
-             i.specular_anisotropy_rotation = glm::vec2(std::cos(0.5f), std::sin(0.5f));
-             i.geometry_coat_basis.normal = glm::normalize(glm::vec3(-0.1f, 0.2f, 1.0f));
-             i.geometry_coat_basis.tangent = glm::vec3(1.0f, 0.0f, 0.0f);
-             i.geometry_coat_basis.bitangent = glm::cross(i.geometry_coat_basis.normal, i.geometry_coat_basis.tangent);
-             i.transmission_weight = 0.3f;
-             i.transmission_dispersion_scale = 0.5f;
-             i.subsurface_weight = 0.3f;
-             i.coat_weight = 0.5f;
-             i.coat_roughness = 0.2f;
-             i.coat_color = glm::vec3(0.9f, 0.8f, 0.7f);
-             i.fuzz_weight = 0.4f;
-             i.thin_film_weight = 0.5f;
-             i.geometry_opacity = 0.9f;
-             return i;
-         },
-         {Side::outside, Side::inside},
-         {1.5f, 1.0f / 1.5f}},
     };
+}
+
+// The whole BSDF with every lobe on at partial weight (thin film, anisotropy, a tilted coat
+// normal, dispersion and partial opacity included), entering and leaving.
+MaterialConfig every_lobe_partial_config()
+{
+    return {"every_lobe_partial",
+            [] {
+                OpenPBR_ResolvedInputs i = defaults();
+                i.base_metalness = 0.3f;
+                i.base_diffuse_roughness = 0.5f;
+                i.specular_roughness = 0.35f;
+                i.specular_roughness_anisotropy = 0.5f;
+                i.geometry_basis = tilted_basis();
+                i.specular_anisotropy_rotation = glm::vec2(std::cos(0.5f), std::sin(0.5f));
+                i.geometry_coat_basis.normal = glm::normalize(glm::vec3(-0.1f, 0.2f, 1.0f));
+                i.geometry_coat_basis.tangent = glm::vec3(1.0f, 0.0f, 0.0f);
+                i.geometry_coat_basis.bitangent = glm::cross(i.geometry_coat_basis.normal, i.geometry_coat_basis.tangent);
+                i.transmission_weight = 0.3f;
+                i.transmission_dispersion_scale = 0.5f;
+                i.subsurface_weight = 0.3f;
+                i.coat_weight = 0.5f;
+                i.coat_roughness = 0.2f;
+                i.coat_color = glm::vec3(0.9f, 0.8f, 0.7f);
+                i.fuzz_weight = 0.4f;
+                i.thin_film_weight = 0.5f;
+                i.geometry_opacity = 0.9f;
+                return i;
+            },
+            {Side::outside, Side::inside},
+            {1.5f, 1.0f / 1.5f}};
+}
+
+const std::vector<MaterialConfig>& material_configs()
+{
+    static const std::vector<MaterialConfig> configs = [] {
+        std::vector<MaterialConfig> all;
+        for (const std::vector<MaterialConfig>& group : {base_configs(), layer_configs(), transmission_configs()})
+        {
+            all.insert(all.end(), group.begin(), group.end());
+        }
+        all.push_back(every_lobe_partial_config());
+        return all;
+    }();
     return configs;
 }
 
@@ -421,7 +452,7 @@ std::vector<FurnaceCase> furnace_cases()
     for (const host::FurnaceConfig& config : host::white_furnace_configs())
     {
         // Every row of the relative-IOR sweep included: a row outside the sweep's band is held
-        // to its measured band of host::furnace_known_limits() (README "Known limits").
+        // to its measured band of host::furnace_known_limits() (docs/known-limits.md).
         for (float view_cos : host::furnace_view_cosines(config))
         {
             for (host::FurnaceSide side : config.sides)
@@ -493,7 +524,7 @@ TEST_P(WhiteFurnace, Albedo)
                                                  << (band.known_limit ? " (known limit)" : "");
         EXPECT_GE(a + 3.0 * se, band.min_albedo) << "white furnace, channel " << channel << ": albedo " << a << " +- " << se
                                                  << (band.known_limit ? " (known limit)" : "");
-        // A known limit is held to its measured band above instead (README "Known limits").
+        // A known limit is held to its measured band above instead (docs/known-limits.md).
         if (c.config->expectation == host::FurnaceExpectation::energy_conserving &&
             c.view_cos >= host::furnace_tolerance_min_cos && !band.known_limit)
         {
@@ -587,7 +618,7 @@ const std::vector<ReciprocityCase>& reciprocity_cases()
         {"eon_thin_walled_transmission", eon_lobe(glm::vec3(0.7f), 0.6f, -1.0f), true},
         {"ggx_thin_walled_transmission",
          microfacet_lobe(openpbr_ggx_alpha(0.4f, 0.0f), openpbr_make_constant_fresnel(glm::vec3(1.0f)), -1.0f), true},
-        // Not listed: the fuzz LTC lobe, which is not reciprocal (README "Model choices").
+        // Not listed: the fuzz LTC lobe, which is not reciprocal (docs/model.md).
     };
     return cases;
 }

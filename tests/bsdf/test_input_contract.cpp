@@ -1,4 +1,4 @@
-// The input contract (README "Input contract", slang/openpbr_input_contract.h): every field of
+// The input contract (docs/api.md "Input contract", slang/openpbr_input_contract.h): every field of
 // OpenPBR_ResolvedInputs is clamped to its documented range (NaN to the field's default,
 // infinities to the nearer bound), OPENPBR_CLAMP_HOOK reports exactly the clamps that change a
 // value, and preparing raw inputs gives the same BSDF as preparing the already-clamped inputs.
@@ -37,7 +37,7 @@ using Inputs = OpenPBR_ResolvedInputs;
 constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
 constexpr float kInf = std::numeric_limits<float>::infinity();
 
-// The documented ranges (README "Input contract"), written out independently of the header.
+// The documented ranges (docs/api.md "Input contract"), written out independently of the header.
 struct FieldRange
 {
     const char* name;
@@ -87,7 +87,7 @@ const std::vector<FieldRange>& fields()
         {"thin_film_thickness", &Inputs::thin_film_thickness, nullptr, 0.0f, length_max},
         {"thin_film_ior", &Inputs::thin_film_ior, nullptr, ior_low, 3.0f},
         {"emission_luminance", &Inputs::emission_luminance, nullptr, 0.0f, 1e18f},
-        {"emission_color", nullptr, &Inputs::emission_color, 0.0f, 1.0f},
+        {"emission_color", nullptr, &Inputs::emission_color, 0.0f, 1e18f},  // spec 1.1.1: [0, inf)^3 (HDR)
         {"geometry_opacity", &Inputs::geometry_opacity, nullptr, 0.0f, 1.0f},
     };
     return table;

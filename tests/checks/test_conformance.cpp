@@ -11,6 +11,7 @@
 
 namespace {
 
+using openpbr::host::ConformanceChannel;
 using openpbr::host::ConformanceOptions;
 using openpbr::host::ConformancePathResult;
 using openpbr::host::ConformanceReport;
@@ -87,6 +88,100 @@ TEST(Conformance, SummaryLeadsWithVerdictAndLabelsPooledFigureOld)
         EXPECT_EQ(text.compare(line_start, 14, "    old metric"), 0) << text;
     }
     EXPECT_NE(text.find("old metric (pooled, not the verdict): max rel err 0.00103309"), std::string::npos) << text;
+}
+
+// The verdict line ends the printed report (`openpbr conformance`, scripts/run.sh) and its
+// counts are in the JSON. Reports built here from path results, no path run: a failing path is
+// one whose figures break a bound (conformance_violations), as a run's would.
+ConformancePathResult executed_path(const std::string& name)
+{
+    ConformancePathResult path;
+    path.name = name;
+    path.executed = true;
+    path.note = "llvmpipe";
+    return path;
+}
+
+ConformancePathResult not_executed_path(const std::string& name, const std::string& note)
+{
+    ConformancePathResult path;
+    path.name = name;
+    path.note = note;
+    return path;
+}
+
+std::string last_line(const std::string& text)
+{
+    const std::size_t end = text.size() - (text.empty() || text.back() != '\n' ? 0 : 1);
+    const std::size_t start = text.rfind('\n', end - 1);
+    return text.substr(start == std::string::npos ? 0 : start + 1, end - (start == std::string::npos ? 0 : start + 1));
+}
+
+TEST(ConformanceVerdict, AllPassWithPathsNotExecuted)
+{
+    ConformanceReport report;
+    report.paths = {executed_path("cpu-fma"), executed_path("slang-spirv"),
+                    not_executed_path("cuda", "not built: build/openpbr_cuda_conformance does not exist"),
+                    not_executed_path("slang-cuda", "not built: build/openpbr_cuda_conformance does not exist"),
+                    not_executed_path("slang-wgsl", "no WebGPU adapter")};
+    EXPECT_EQ(last_line(openpbr::host::to_text(report)),
+              "verdict: 2 of 2 executed paths pass; not executed: cuda, slang-cuda (not built); slang-wgsl (no WebGPU "
+              "adapter)");
+    const nlohmann::json verdict = openpbr::host::to_json(report)["verdict"];
+    EXPECT_EQ(verdict["executed"], 2);
+    EXPECT_EQ(verdict["passed"], 2);
+    EXPECT_EQ(verdict["failed"], 0);
+    EXPECT_EQ(verdict["not_executed"], 3);
+    EXPECT_EQ(verdict["passes"], true);
+    EXPECT_EQ(verdict["not_executed_paths"][0]["name"], "cuda");
+    EXPECT_EQ(verdict["not_executed_paths"][0]["reason"], "not built: build/openpbr_cuda_conformance does not exist");
+    EXPECT_EQ(verdict["text"], last_line(openpbr::host::to_text(report)));
+}
+
+TEST(ConformanceVerdict, FailuresComeFirst)
+{
+    ConformanceReport report;
+    ConformancePathResult nonfinite = executed_path("glsl-spirv");
+    nonfinite.nonfinite = 3;
+    ConformancePathResult off_bound = executed_path("hlsl");
+    ConformanceChannel channel;
+    channel.name = "eval.diffuse.r";
+    channel.count = 100;
+    channel.max_bound_ratio = 2.0;  // twice its allowance
+    off_bound.channels = {channel};
+    report.paths = {executed_path("slang-spirv"), nonfinite, off_bound, not_executed_path("cuda", "not built: no nvcc")};
+    ASSERT_FALSE(openpbr::host::conformance_violations(off_bound).empty());
+    EXPECT_EQ(last_line(openpbr::host::to_text(report)),
+              "verdict: 2 of 3 executed paths fail: glsl-spirv, hlsl; 1 passes; not executed: cuda (not built)");
+    const nlohmann::json verdict = openpbr::host::to_json(report)["verdict"];
+    EXPECT_EQ(verdict["executed"], 3);
+    EXPECT_EQ(verdict["passed"], 1);
+    EXPECT_EQ(verdict["failed"], 2);
+    EXPECT_EQ(verdict["not_executed"], 1);
+    EXPECT_EQ(verdict["passes"], false);
+    EXPECT_EQ(verdict["failed_paths"], nlohmann::json::array({"glsl-spirv", "hlsl"}));
+}
+
+TEST(ConformanceVerdict, OnePathAndNone)
+{
+    ConformanceReport report;
+    report.paths = {executed_path("cpu-ulp")};
+    EXPECT_EQ(last_line(openpbr::host::to_text(report)), "verdict: 1 of 1 executed path passes");
+    report.paths[0].nonfinite = 1;
+    EXPECT_EQ(last_line(openpbr::host::to_text(report)), "verdict: 1 of 1 executed path fails: cpu-ulp; 0 pass");
+    report.paths = {not_executed_path("cuda", "not built")};
+    EXPECT_EQ(last_line(openpbr::host::to_text(report)), "verdict: no path executed; not executed: cuda (not built)");
+    EXPECT_EQ(openpbr::host::to_json(report)["verdict"]["executed"], 0);
+}
+
+// A run of the CPU paths: every executed path is counted once, in report order.
+TEST(ConformanceVerdict, RunCountsItsPaths)
+{
+    const ConformanceReport report = run_paths({"cpu-ulp", "cpu-fma"}, 2000);
+    const openpbr::host::PathVerdict verdict = openpbr::host::conformance_verdict(report);
+    EXPECT_EQ(verdict.passed.size() + verdict.failed.size() + verdict.not_executed.size(), 2u);
+    EXPECT_EQ(verdict.passed.size(), 2u - verdict.not_executed.size()) << openpbr::host::verdict_line(verdict);
+    EXPECT_EQ(last_line(openpbr::host::to_text(report)), openpbr::host::verdict_line(verdict));
 }
 
 TEST(Conformance, UnknownPathIsAnError) { EXPECT_THROW(run_paths({"cpu-only"}, 64), std::invalid_argument); }

@@ -10,6 +10,7 @@
 #include <set>
 #include <sstream>
 
+#include "host/checks/conformance.h"
 #include "host/checks/stability.h"
 #include "host/scene/material_library.h"
 #include "tests/checks/stability_expectations.h"
@@ -164,6 +165,67 @@ TEST(Stability, ReportJsonHasTheDocumentedShape)
     {
         EXPECT_EQ(report.paths[0].cases[c].mean_weight[1], again.paths[0].cases[c].mean_weight[1]);
     }
+}
+
+std::string last_line(const std::string& text)
+{
+    const std::size_t end = text.size() - (text.empty() || text.back() != '\n' ? 0 : 1);
+    const std::size_t start = text.rfind('\n', end - 1);
+    return text.substr(start == std::string::npos ? 0 : start + 1, end - (start == std::string::npos ? 0 : start + 1));
+}
+
+// The verdict line ends the report (`openpbr stability`) and its counts are in the JSON. The
+// failing path is a real run of the CPU build whose executor turns every query's eval.diffuse.r
+// into NaN; the paths reported as they finish are the ones in the report.
+TEST(StabilityVerdict, FailuresFirstThenPassesThenNotExecuted)
+{
+    const std::vector<StabilityCase> cases(corpus().begin(), corpus().begin() + 3);
+    StabilityOptions options;
+    options.samples_per_case = 100;
+    std::vector<std::string> finished;
+    options.on_path_finished = [&finished](const openpbr::host::StabilityPathResult& path) {
+        finished.push_back(path.name);
+    };
+    StabilityReport report = openpbr::host::run_stability_cpu(cases, options);
+    EXPECT_EQ(finished, std::vector<std::string>{"cpu"});
+    EXPECT_EQ(last_line(openpbr::host::to_text(report)), "verdict: 1 of 1 executed path passes");
+
+    const openpbr::host::StabilityExecutor nan_eval = [](const std::vector<float>& queries,
+                                                         const std::vector<float>& materials) {
+        std::vector<float> results = openpbr::host::run_conformance_cpu(queries, materials);
+        for (std::size_t record = 0; record < results.size(); record += openpbr::host::conformance_result_floats)
+        {
+            results[record] = std::numeric_limits<float>::quiet_NaN();
+        }
+        return results;
+    };
+    openpbr::host::StabilityPathResult broken =
+        openpbr::host::run_stability_path("nan-eval", nan_eval, cases, options.samples_per_case, options.seed);
+    ASSERT_TRUE(broken.executed);
+    EXPECT_GT(broken.nonfinite, 0u);
+    report.paths.push_back(broken);
+    openpbr::host::StabilityPathResult missing;
+    missing.name = "cuda";
+    missing.note = "not built: build/openpbr_cuda_conformance does not exist";
+    report.paths.push_back(missing);
+    EXPECT_TRUE(openpbr::host::has_violations(report));
+    EXPECT_EQ(last_line(openpbr::host::to_text(report)),
+              "verdict: 1 of 2 executed paths fails: nan-eval; 1 passes; not executed: cuda (not built)");
+    const nlohmann::json verdict = openpbr::host::to_json(report)["verdict"];
+    EXPECT_EQ(verdict["executed"], 2);
+    EXPECT_EQ(verdict["passed"], 1);
+    EXPECT_EQ(verdict["failed"], 1);
+    EXPECT_EQ(verdict["not_executed"], 1);
+    EXPECT_EQ(verdict["passes"], false);
+    EXPECT_EQ(verdict["failed_paths"], nlohmann::json::array({"nan-eval"}));
+    EXPECT_EQ(verdict["text"], last_line(openpbr::host::to_text(report)));
+
+    // A volume check that fails comes before the paths.
+    report.volume_violations = 2;
+    EXPECT_EQ(last_line(openpbr::host::to_text(report)),
+              "verdict: volume check fails in 2 cases; 1 of 2 executed paths fails: nan-eval; 1 passes; not executed: "
+              "cuda (not built)");
+    EXPECT_EQ(openpbr::host::to_json(report)["verdict"]["other_failures"].size(), 1u);
 }
 
 TEST(StabilityCpu, FiniteNonNegativeAndNoEnergyGain)

@@ -312,7 +312,7 @@ std::vector<RenderCell> white_nested_cells(float roughness)
 // trapped between the bubble and the water's surface reach the cap), glass in water 0.99995.
 // Bounds: a loss of at most 0.2 % (four times the largest measured).
 // Rough (roughness 0.2): below relative IOR 1 (water seen from glass 0.875, air seen from water
-// 0.75) the few transmitting microfacets carry large sample weights (README "Known limits"), so
+// 0.75) the few transmitting microfacets carry large sample weights (docs/known-limits.md), so
 // these estimates are noisy. Measured: glass of water 1.0071 +- 0.014, air bubble in water
 // 0.9984 +- 0.0015, glass in water (relative IOR 1.14) 0.99996 +- 0.00055 (they were 0.9688 and
 // 0.9719 before the light the transmission compensation's floor keeps went to reflection).

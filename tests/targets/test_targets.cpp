@@ -256,14 +256,13 @@ std::string file_text(const std::filesystem::path& path)
     return text.str();
 }
 
-// Toggles in both of WGSL's forms (README "WebGPU"): the kernels as built, every toggle an
-// `override`, run with those outside a set false at pipeline creation (PathBatch::feature_mask),
-// and the kernels `openpbr compile --target wgsl --specialize` generated for the set, with no
-// `override` left, give the same results on both WebGPU paths. The batch holds materials inside
-// the set and one that needs a toggle outside it (the thin film): on that one's queries the
-// results must lie far closer to the CPU build with the set's toggles (ScopedFeatureMask) than to
-// the CPU build with every toggle on, which shows that both forms really switched it off, rather
-// than both running every toggle on.
+// Toggles in both of WGSL's forms (docs/specialization.md "WGSL: overrides or folded when generated"): the kernels as built,
+// every toggle an `override`, run with those outside a set false at pipeline creation (PathBatch::feature_mask), and the
+// kernels `openpbr compile --target wgsl --specialize` generated for the set, with no `override` left, give the same results
+// on both WebGPU paths. The batch holds materials inside the set and one that needs a toggle outside it (the thin film): on
+// that one's queries the results must lie far closer to the CPU build with the set's toggles (ScopedFeatureMask) than to the
+// CPU build with every toggle on, which shows that both forms really switched it off, rather than both running every toggle
+// on.
 TEST(Targets, WgslSpecializedWhenGeneratedMatchesOverrideConstants)
 {
     const std::vector<std::string> path_names = {"slang-wgsl", "wgsl-library"};
