@@ -133,6 +133,13 @@
 #define OPENPBR_MAX_ITERS(count)
 #endif
 
+// A value whose derivative is cut, e.g. bsdf.volume = OPENPBR_DETACH(openpbr_make_volume(inputs)):
+// Slang's detach() in the differentiable build (no reverse pass runs through its set-up); the
+// value itself elsewhere.
+#ifndef OPENPBR_DETACH
+#define OPENPBR_DETACH(value) (value)
+#endif
+
 // Whether a lobe or layer of this weight is set up and evaluated, e.g.
 // if (OPENPBR_WEIGHT_ACTIVE(coat_weight)). The plain module skips weight 0 (such a lobe adds
 // nothing and costs nothing); the differentiable one keeps it, so d/d(weight) at 0 is the lobe's

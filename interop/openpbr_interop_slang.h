@@ -32,6 +32,7 @@
 #define OPENPBR_FUNC [Differentiable]
 #define OPENPBR_DIFFERENTIABLE : IDifferentiable
 #define OPENPBR_MAX_ITERS(count) [MaxIters(count)]
+#define OPENPBR_DETACH(value) detach(value)
 #if defined(OPENPBR_USE_TEXTURE_LUTS) && OPENPBR_USE_TEXTURE_LUTS
 #error "OPENPBR_AUTODIFF=1 needs buffer or array tables: texture reads (SampleLevel) have no derivative"
 #endif

@@ -66,7 +66,9 @@ struct OpenPBR_DielectricLobe OPENPBR_DIFFERENTIABLE
 
 // Whether dispersion gives the channels different IORs (each channel then refracts, and is
 // compensated, with its own).
-OPENPBR_FUNC bool openpbr_channels_differ(vec3 eta) { return !(eta.x == eta.y && eta.y == eta.z); }
+// The differentiable build treats every IOR as dispersive, so the derivative with respect to the
+// dispersion at scale 0 is kept.
+OPENPBR_FUNC bool openpbr_channels_differ(vec3 eta) { return OPENPBR_AUTODIFF != 0 || !(eta.x == eta.y && eta.y == eta.z); }
 
 // Width w_T (radians) of the refracted lobe at view cosine mu (see the header): |1 - 1/eta|
 // alpha / (mu^2 + alpha^2), the widest channel for a dispersive eta.

