@@ -103,7 +103,7 @@ OPENPBR_FUNC vec3 openpbr_diffuse_lobe_eval(OPENPBR_IN(OpenPBR_DiffuseLobe) lobe
             value + lobe.single_scatter_b * s_over_t_cos +
             lobe.multiple_scatter * (openpbr_max_first_at_tie(1.0f - openpbr_eon_fon_albedo(mu_i, lobe.sigma), 0.0f) * mu_i);
     }
-    return max(value, vec3(0.0f));
+    return openpbr_max_first_at_tie(value, vec3(0.0f));
 }
 
 OPENPBR_FUNC float openpbr_diffuse_lobe_pdf(OPENPBR_IN(OpenPBR_DiffuseLobe) lobe, vec3 view, vec3 light)
