@@ -137,10 +137,10 @@ OPENPBR_FUNC vec3 openpbr_dispersive_ior(float ior_d, float abbe_number, float d
     const float inverse_c2 = 1.0f / (656.3f * 656.3f);
     // The differentiable build forms 1 / V_d = scale / abbe (the same value), whose derivative is
     // finite at scale 0 where abbe / scale's is not.
-    const float b = OPENPBR_AUTODIFF != 0
-                        ? (ior_d - 1.0f) * min(dispersion_scale / abbe_number, 1.0f / OPENPBR_ABBE_MIN) /
-                              (inverse_f2 - inverse_c2)
-                        : (ior_d - 1.0f) / (max(abbe_number / dispersion_scale, OPENPBR_ABBE_MIN) * (inverse_f2 - inverse_c2));
+    const float b =
+        OPENPBR_AUTODIFF != 0
+            ? (ior_d - 1.0f) * min(dispersion_scale / abbe_number, 1.0f / OPENPBR_ABBE_MIN) / (inverse_f2 - inverse_c2)
+            : (ior_d - 1.0f) / (max(abbe_number / dispersion_scale, OPENPBR_ABBE_MIN) * (inverse_f2 - inverse_c2));
     const float a = ior_d - b / (587.6f * 587.6f);
     // NaN or infinite wavelengths (caller input) map into the range too: NaN to 300 nm, so the
     // IOR and every table coordinate derived from it stay finite.
@@ -159,8 +159,9 @@ OPENPBR_FUNC OpenPBR_ResolvedInputs openpbr_prepare_inputs(OPENPBR_IN(OpenPBR_Re
 OPENPBR_FUNC bool openpbr_needs_rgb_wavelengths(OPENPBR_IN(OpenPBR_ResolvedInputs) raw_inputs)
 {
     const OpenPBR_ResolvedInputs inputs = openpbr_prepare_inputs(raw_inputs);
-    return OPENPBR_WEIGHT_ACTIVE(inputs.transmission_dispersion_scale) && OPENPBR_WEIGHT_ACTIVE(inputs.transmission_weight) &&
-           inputs.base_metalness < 1.0f && inputs.geometry_opacity > 0.0f && !inputs.geometry_thin_walled;
+    return OPENPBR_WEIGHT_ACTIVE(inputs.transmission_dispersion_scale) &&
+           OPENPBR_WEIGHT_ACTIVE(inputs.transmission_weight) && inputs.base_metalness < 1.0f &&
+           inputs.geometry_opacity > 0.0f && !inputs.geometry_thin_walled;
 }
 
 // Transmittance of one pass through the coat at cosine mu (outside), T = coat_color^(1/(2 mu_t)).
@@ -295,8 +296,8 @@ OPENPBR_INLINE_FUNC OpenPBR_PreparedBsdf openpbr_prepare_frames(OPENPBR_IN(OpenP
     // one otherwise too; the branch skips its set-up for opaque and thin-walled materials).
     // Detached in the differentiable build: the medium's set-up has infinite derivatives where a
     // slab's weight is 0, which a reverse pass multiplied by the medium's zero cotangent into NaN.
-    bsdf.volume = (entering_weight > 0.0f && !thin_walled) ? openpbr_make_volume(OPENPBR_DETACH(inputs))
-                                                            : openpbr_make_empty_volume();
+    bsdf.volume =
+        (entering_weight > 0.0f && !thin_walled) ? openpbr_make_volume(OPENPBR_DETACH(inputs)) : openpbr_make_empty_volume();
     bsdf.emission = vec3(0.0f);
     bsdf.pass_through_weight = vec3(1.0f - opacity);
     return bsdf;
@@ -404,7 +405,8 @@ OPENPBR_INLINE_FUNC void openpbr_prepare_coat_layer(OPENPBR_IN(OpenPBR_ResolvedI
     if (OPENPBR_WEIGHT_ACTIVE(inputs.coat_weight))
     {
         bsdf.coat = openpbr_coat_lobe_prepare(inputs, coat_eta, layer_weight, bsdf.coat_view, albedo);
-        bsdf.coat_absorbs = OPENPBR_AUTODIFF != 0 || !(inputs.coat_color.x == 1.0f && inputs.coat_color.y == 1.0f && inputs.coat_color.z == 1.0f);
+        bsdf.coat_absorbs = OPENPBR_AUTODIFF != 0 ||
+                            !(inputs.coat_color.x == 1.0f && inputs.coat_color.y == 1.0f && inputs.coat_color.z == 1.0f);
         if (bsdf.coat_absorbs)
         {
             bsdf.coat_half_log_color = 0.5f * log(max(inputs.coat_color, vec3(1e-6f)));
@@ -601,8 +603,8 @@ OPENPBR_FUNC void openpbr_select_lobes(OPENPBR_IN(OpenPBR_ResolvedInputs) inputs
     float metal_p = 0.0f;
     if (OPENPBR_WEIGHT_ACTIVE(metalness))
     {
-        const vec3 metal_selection_albedo =
-            openpbr_max_first_at_tie(albedos.metal, OPENPBR_METAL_SELECTION_FLOOR * bsdf.metal.weight * bsdf.metal.fresnel.tint);
+        const vec3 metal_selection_albedo = openpbr_max_first_at_tie(
+            albedos.metal, OPENPBR_METAL_SELECTION_FLOOR * bsdf.metal.weight * bsdf.metal.fresnel.tint);
         metal_p = openpbr_luminance(metal_selection_albedo * under_reflected * channel);
     }
     const float diffuse_p = openpbr_luminance(albedos.diffuse * under_reflected * channel);

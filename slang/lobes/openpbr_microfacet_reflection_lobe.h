@@ -869,8 +869,9 @@ OPENPBR_FUNC OpenPBR_MicrofacetReflectionLobe openpbr_metal_lobe_prepare(
     const OpenPBR_MicrofacetReflectionLobe metal = openpbr_microfacet_reflection_lobe_init(
         metal_compensation * metalness, alpha, fresnel, OPENPBR_LOBE_ID_METAL, 1.0f, view);
     // The filmed factor averaged over the lobe; without a film, the factor at the view.
-    const vec3 mean_fresnel =
-        OPENPBR_WEIGHT_ACTIVE(fresnel.film_weight) ? film_averages.second : openpbr_fresnel_evaluate_without_film(fresnel, mu);
+    const vec3 mean_fresnel = OPENPBR_WEIGHT_ACTIVE(fresnel.film_weight)
+                                  ? film_averages.second
+                                  : openpbr_fresnel_evaluate_without_film(fresnel, mu);
     albedo =
         openpbr_saturate(metal_compensation * mean_fresnel * (metal.is_delta ? 1.0f : base_lobe_albedo.albedo)) * metalness;
     return metal;
