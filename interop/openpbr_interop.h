@@ -110,6 +110,62 @@
 #define OPENPBR_DONT_UNROLL
 #endif
 
+// OPENPBR_AUTODIFF=1: the differentiable build (docs/gradients.md), e.g. slangc -DOPENPBR_AUTODIFF=1.
+// Under Slang every function is [Differentiable] and every struct IDifferentiable; in every
+// language lobes of weight 0 are prepared and evaluated (their one-sided derivative) and the
+// input contract's clamps pass the derivative at their ends. Default 0: the plain module.
+#ifndef OPENPBR_AUTODIFF
+#define OPENPBR_AUTODIFF 0
+#endif
+
+// Suffix of a struct's name in its definition, e.g. struct OpenPBR_Basis OPENPBR_DIFFERENTIABLE:
+// `: IDifferentiable` in Slang's differentiable build (its float fields get a differential, its
+// bool and int fields drop out); empty elsewhere.
+#ifndef OPENPBR_DIFFERENTIABLE
+#define OPENPBR_DIFFERENTIABLE
+#endif
+
+// Prefix of a loop whose trip count depends on the data, with the bound the code guarantees, e.g.
+// OPENPBR_MAX_ITERS(3) for (int channel = 0; channel < channel_count; ++channel): Slang's
+// [MaxIters(n)] in the differentiable build (reverse mode needs it to size the loop's tape);
+// empty elsewhere.
+#ifndef OPENPBR_MAX_ITERS
+#define OPENPBR_MAX_ITERS(count)
+#endif
+
+// A value whose derivative is cut, e.g. bsdf.volume = OPENPBR_DETACH(openpbr_make_volume(inputs)):
+// Slang's detach() in the differentiable build (no reverse pass runs through its set-up); the
+// value itself elsewhere.
+#ifndef OPENPBR_DETACH
+#define OPENPBR_DETACH(value) (value)
+#endif
+
+// Whether a lobe or layer of this weight is set up and evaluated, e.g.
+// if (OPENPBR_WEIGHT_ACTIVE(coat_weight)). The plain module skips weight 0 (such a lobe adds
+// nothing and costs nothing); the differentiable one keeps it, so d/d(weight) at 0 is the lobe's
+// one-sided derivative instead of 0 (weights are >= 0 after the input contract).
+#if OPENPBR_AUTODIFF
+#define OPENPBR_WEIGHT_ACTIVE(weight) ((weight) >= 0.0f)
+#else
+#define OPENPBR_WEIGHT_ACTIVE(weight) ((weight) > 0.0f)
+#endif
+
+// The input contract's clamp to [low, high]. The differentiable build spells it with comparisons
+// that keep the value at either end (same result), so the derivative there is the one-sided one
+// from inside the range (1) instead of the built-in clamp's 0.
+#if OPENPBR_AUTODIFF
+#define OPENPBR_CONTRACT_CLAMP(value, low, high) ((value) < (low) ? (low) : ((value) > (high) ? (high) : (value)))
+#else
+#define OPENPBR_CONTRACT_CLAMP(value, low, high) clamp(value, low, high)
+#endif
+
+// Declaration prefix of a part of a larger function, split out for reading and called once, e.g.
+// OPENPBR_INLINE_FUNC void openpbr_clear_lobes(...): forced inline where a compiler would keep it
+// out of line (the C++ and CUDA backends); elsewhere OPENPBR_FUNC (GPU compilers inline every call).
+#ifndef OPENPBR_INLINE_FUNC
+#define OPENPBR_INLINE_FUNC OPENPBR_FUNC
+#endif
+
 // Every backend must provide these; checked here so a new backend fails loudly.
 #if !defined(OPENPBR_FUNC) || !defined(OPENPBR_IN) || !defined(OPENPBR_INOUT) || !defined(OPENPBR_OUT) || \
     !defined(OPENPBR_UNUSED) || !defined(OPENPBR_NAMESPACE_BEGIN) || !defined(OPENPBR_NAMESPACE_END) ||   \

@@ -23,6 +23,8 @@
 #define OPENPBR_NAMESPACE_END }
 
 #define OPENPBR_FUNC __host__ __device__ inline
+// A part of a larger function, called once (interop/openpbr_interop_cpp.h): inlined.
+#define OPENPBR_INLINE_FUNC __host__ __device__ __forceinline__
 #define OPENPBR_IN(type) const type&
 #define OPENPBR_INOUT(type) type&
 // Marks a parameter a lobe ignores (the shared lobe signature has it), e.g. the view of a

@@ -25,7 +25,20 @@
 
 #define OPENPBR_NAMESPACE_BEGIN
 #define OPENPBR_NAMESPACE_END
+// The differentiable build (OPENPBR_AUTODIFF=1, interop/openpbr_interop.h): every function
+// [Differentiable] (a differentiable function may call only differentiable ones, so the whole
+// module is marked), every struct IDifferentiable, data-dependent loops bounded.
+#if defined(OPENPBR_AUTODIFF) && OPENPBR_AUTODIFF
+#define OPENPBR_FUNC [Differentiable]
+#define OPENPBR_DIFFERENTIABLE : IDifferentiable
+#define OPENPBR_MAX_ITERS(count) [MaxIters(count)]
+#define OPENPBR_DETACH(value) detach(value)
+#if defined(OPENPBR_USE_TEXTURE_LUTS) && OPENPBR_USE_TEXTURE_LUTS
+#error "OPENPBR_AUTODIFF=1 needs buffer or array tables: texture reads (SampleLevel) have no derivative"
+#endif
+#else
 #define OPENPBR_FUNC
+#endif
 #define OPENPBR_IN(type) in type
 #define OPENPBR_INOUT(type) inout type
 // Marks a parameter a lobe ignores (the shared lobe signature has it), e.g. the view of a

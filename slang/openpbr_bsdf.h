@@ -33,13 +33,13 @@
 
 OPENPBR_NAMESPACE_BEGIN
 
-struct OpenPBR_DiffuseSpecular
+struct OpenPBR_DiffuseSpecular OPENPBR_DIFFERENTIABLE
 {
     vec3 diffuse;   // diffuse lobes (EON reflection and thin-walled diffuse transmission)
     vec3 specular;  // everything else (microfacet lobes, fuzz)
 };
 
-struct OpenPBR_BsdfSample
+struct OpenPBR_BsdfSample OPENPBR_DIFFERENTIABLE
 {
     vec3 direction;                  // world space
     OpenPBR_DiffuseSpecular weight;  // BSDF x |cos| / pdf, split like eval
@@ -57,7 +57,7 @@ struct OpenPBR_BsdfSample
 // openpbr;` exports declarations, not macros), e.g. to pass an exterior IOR to openpbr_prepare.
 OPENPBR_FUNC vec3 openpbr_default_rgb_wavelengths_nm() { return OPENPBR_DEFAULT_RGB_WAVELENGTHS_NM; }
 
-struct OpenPBR_PreparedBsdf
+struct OpenPBR_PreparedBsdf OPENPBR_DIFFERENTIABLE
 {
     OpenPBR_Basis basis;       // base shading frame, view side up (flipped for back faces)
     OpenPBR_Basis coat_basis;  // coat frame, same side as the base frame
@@ -129,14 +129,18 @@ OPENPBR_FUNC float openpbr_average_fresnel(float eta)
 // Fraunhofer d line with Abbe number V_d = abbe / scale (F 486.1 nm, d 587.6 nm, C 656.3 nm).
 OPENPBR_FUNC vec3 openpbr_dispersive_ior(float ior_d, float abbe_number, float dispersion_scale, vec3 wavelengths_nm)
 {
-    if (!(dispersion_scale > 0.0f))
+    if (!OPENPBR_WEIGHT_ACTIVE(dispersion_scale))
     {
         return vec3(ior_d);
     }
-    const float abbe = max(abbe_number / dispersion_scale, OPENPBR_ABBE_MIN);
     const float inverse_f2 = 1.0f / (486.1f * 486.1f);
     const float inverse_c2 = 1.0f / (656.3f * 656.3f);
-    const float b = (ior_d - 1.0f) / (abbe * (inverse_f2 - inverse_c2));
+    // The differentiable build forms 1 / V_d = scale / abbe (the same value), whose derivative is
+    // finite at scale 0 where abbe / scale's is not.
+    const float b =
+        OPENPBR_AUTODIFF != 0
+            ? (ior_d - 1.0f) * min(dispersion_scale / abbe_number, 1.0f / OPENPBR_ABBE_MIN) / (inverse_f2 - inverse_c2)
+            : (ior_d - 1.0f) / (max(abbe_number / dispersion_scale, OPENPBR_ABBE_MIN) * (inverse_f2 - inverse_c2));
     const float a = ior_d - b / (587.6f * 587.6f);
     // NaN or infinite wavelengths (caller input) map into the range too: NaN to 300 nm, so the
     // IOR and every table coordinate derived from it stay finite.
@@ -155,8 +159,9 @@ OPENPBR_FUNC OpenPBR_ResolvedInputs openpbr_prepare_inputs(OPENPBR_IN(OpenPBR_Re
 OPENPBR_FUNC bool openpbr_needs_rgb_wavelengths(OPENPBR_IN(OpenPBR_ResolvedInputs) raw_inputs)
 {
     const OpenPBR_ResolvedInputs inputs = openpbr_prepare_inputs(raw_inputs);
-    return inputs.transmission_dispersion_scale > 0.0f && inputs.transmission_weight > 0.0f &&
-           inputs.base_metalness < 1.0f && inputs.geometry_opacity > 0.0f && !inputs.geometry_thin_walled;
+    return OPENPBR_WEIGHT_ACTIVE(inputs.transmission_dispersion_scale) &&
+           OPENPBR_WEIGHT_ACTIVE(inputs.transmission_weight) && inputs.base_metalness < 1.0f &&
+           inputs.geometry_opacity > 0.0f && !inputs.geometry_thin_walled;
 }
 
 // Transmittance of one pass through the coat at cosine mu (outside), T = coat_color^(1/(2 mu_t)).
@@ -206,7 +211,12 @@ OPENPBR_FUNC OpenPBR_Basis openpbr_flip_basis(OPENPBR_IN(OpenPBR_Basis) basis)
 // estimate exceeds 1/1000 of that bound (every base_color above 1e-3 seen head-on).
 #define OPENPBR_METAL_SELECTION_FLOOR 1e-3f
 
-OPENPBR_FUNC float openpbr_kept_probability(float probability, float cut) { return probability >= cut ? probability : 0.0f; }
+// The differentiable build keeps every lobe (no cut): dropping one is a jump in pdf where its
+// probability crosses the cut, and a weight-0 lobe's one-sided derivative needs it kept.
+OPENPBR_FUNC float openpbr_kept_probability(float probability, float cut)
+{
+    return (OPENPBR_AUTODIFF != 0 || probability >= cut) ? probability : 0.0f;
+}
 
 // Channel weights that steer lobe selection towards what a lobe adds to the current path: the
 // path throughput divided by its largest channel, each channel floored at
@@ -246,15 +256,11 @@ OPENPBR_FUNC float openpbr_selection_white_scale(vec3 channel_weights)
     return white ? channel_weights.x : openpbr_luminance(channel_weights);
 }
 
-// Composes the lobes, each set up by its prepare in slang/lobes/ only where its weight is above
-// zero (a lobe whose weight is zero costs nothing): the others keep the empty lobe and
-// selection probability 0, which eval, pdf and sample never look at. With a feature toggled off
-// its weight is the constant 0, so the compiler removes the set-up altogether.
-// `inputs` have passed openpbr_prepare_inputs. exterior_ior: the absolute IOR of the medium the view is in (docs/api.md
-// "Exterior medium"), already passed through openpbr_contract_exterior_ior. `path_throughput` only steers lobe selection
-// (openpbr_selection_channel_weights); white gives the unweighted probabilities.
-OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare_lobes_of(OPENPBR_IN(OpenPBR_ResolvedInputs) inputs, vec3 view_world,
-                                                           vec3 rgb_wavelengths_nm, float exterior_ior, vec3 path_throughput)
+// The frames and views of the three layers, the side the view is on and what does not depend on
+// the lobes: the interior medium, the pass-through weight, an emission of 0 (openpbr_prepare
+// sets it). Coat and fuzz frames only where those layers exist; otherwise the base frame stands
+// in (eval then transforms the light once). `inputs` have passed openpbr_prepare_inputs.
+OPENPBR_INLINE_FUNC OpenPBR_PreparedBsdf openpbr_prepare_frames(OPENPBR_IN(OpenPBR_ResolvedInputs) inputs, vec3 view_world)
 {
     OpenPBR_PreparedBsdf bsdf;
     bsdf.view_world = openpbr_safe_normalize(view_world, inputs.geometry_basis.normal);
@@ -272,56 +278,36 @@ OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare_lobes_of(OPENPBR_IN(OpenPBR_Re
     bsdf.coat_basis = back_face ? openpbr_flip_basis(inputs.geometry_coat_basis) : inputs.geometry_coat_basis;
     bsdf.view = openpbr_to_local(bsdf.basis, bsdf.view_world);
     bsdf.view = openpbr_floor_view_cosine(bsdf.view);
-    // Coat and fuzz frames only where those layers exist; otherwise the base frame stands in
-    // (eval then transforms the light once).
     bsdf.coat_view = bsdf.view;
-    if (coat_weight > 0.0f)
+    if (OPENPBR_WEIGHT_ACTIVE(coat_weight))
     {
         bsdf.coat_view = openpbr_to_local(bsdf.coat_basis, bsdf.view_world);
         bsdf.coat_view = openpbr_floor_view_cosine(bsdf.coat_view);
     }
     bsdf.fuzz_basis = bsdf.basis;
     bsdf.fuzz_view = bsdf.view;
-    if (fuzz_weight > 0.0f)
+    if (OPENPBR_WEIGHT_ACTIVE(fuzz_weight))
     {
         bsdf.fuzz_basis = openpbr_make_basis(mix(bsdf.basis.normal, bsdf.coat_basis.normal, coat_weight));
         bsdf.fuzz_view = openpbr_to_local(bsdf.fuzz_basis, bsdf.view_world);
         bsdf.fuzz_view = openpbr_floor_view_cosine(bsdf.fuzz_view);
     }
-    const vec3 view = bsdf.view;
     // The interior medium exists only where light can enter (the volume helper returns an empty
     // one otherwise too; the branch skips its set-up for opaque and thin-walled materials).
-    bsdf.volume = (entering_weight > 0.0f && !thin_walled) ? openpbr_make_volume(inputs) : openpbr_make_empty_volume();
+    // Detached in the differentiable build: the medium's set-up has infinite derivatives where a
+    // slab's weight is 0, which a reverse pass multiplied by the medium's zero cotangent into NaN.
+    bsdf.volume =
+        (entering_weight > 0.0f && !thin_walled) ? openpbr_make_volume(OPENPBR_DETACH(inputs)) : openpbr_make_empty_volume();
     bsdf.emission = vec3(0.0f);
     bsdf.pass_through_weight = vec3(1.0f - opacity);
+    return bsdf;
+}
 
-    // ---- IORs (spec "Base Substrate", "Coat" total internal reflection fix) ----
-    // Every interface sees a relative IOR: the coat against the exterior medium, the base
-    // against the exterior (uncoated) or the coat (spec "Coat": the base's relative IOR under
-    // the coat, inverted where the coat is the denser medium), blended by coat_weight.
-    const float coat_eta = openpbr_relative_ior(inputs.coat_ior, exterior_ior);
-    const float base_eta = openpbr_relative_ior(inputs.specular_ior, exterior_ior);
-    const float base_over_coat = inputs.coat_ior > inputs.specular_ior ? inputs.coat_ior / inputs.specular_ior
-                                                                       : inputs.specular_ior / inputs.coat_ior;
-    const float eta_base = openpbr_modulated_ior(coat_weight > 0.0f ? mix(base_eta, base_over_coat, coat_weight) : base_eta,
-                                                 inputs.specular_weight);
-    const vec3 eta_channels =
-        openpbr_dispersive_ior(eta_base, inputs.transmission_dispersion_abbe_number,
-                               thin_walled ? 0.0f : inputs.transmission_dispersion_scale, rgb_wavelengths_nm);
-
-    // ---- Roughness: the coat roughens the base (spec "Coat", roughening) ----
-    const float coat_roughness = inputs.coat_roughness;
-    const float base_roughness =
-        coat_weight > 0.0f
-            ? mix(inputs.specular_roughness,
-                  pow(min(1.0f, pow(inputs.specular_roughness, 4.0f) + 2.0f * pow(coat_roughness, 4.0f)), 0.25f),
-                  coat_weight)
-            : inputs.specular_roughness;
-    const vec2 alpha = openpbr_ggx_alpha(base_roughness, inputs.specular_roughness_anisotropy);
-    const OpenPBR_GgxLobeAlbedo base_lobe_albedo =
-        openpbr_ggx_lobe_albedo(base_roughness, inputs.specular_roughness_anisotropy, alpha, view);
-    const float table_alpha = base_lobe_albedo.table_alpha;
-
+// Every lobe empty and every selection probability 0, the layering factors those of no coat:
+// what prepare leaves where a layer or lobe has weight 0. Every argument is a constant, so the
+// empty lobes fold to stores of constants.
+OPENPBR_INLINE_FUNC void openpbr_clear_lobes(OPENPBR_INOUT(OpenPBR_PreparedBsdf) bsdf)
+{
     bsdf.probability_fuzz = 0.0f;
     bsdf.probability_coat = 0.0f;
     bsdf.probability_specular = 0.0f;
@@ -335,9 +321,7 @@ OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare_lobes_of(OPENPBR_IN(OpenPBR_Re
     bsdf.under_coat_absorbing = vec3(0.0f);
     bsdf.coat_half_log_color = vec3(0.0f);
     bsdf.coat_absorbs = false;
-    bsdf.coat_inverse_eta_squared = 1.0f / (coat_eta * coat_eta);
     bsdf.under_coat_transmitted = vec3(1.0f);
-    // Empty lobes: every argument is a constant, so these fold to stores of constants.
     bsdf.fuzz = openpbr_fuzz_lobe_empty();
     bsdf.coat = openpbr_microfacet_reflection_lobe_empty(OPENPBR_LOBE_ID_COAT);
     bsdf.specular = openpbr_microfacet_reflection_lobe_empty(OPENPBR_LOBE_ID_SPECULAR_REFLECTION);
@@ -346,75 +330,149 @@ OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare_lobes_of(OPENPBR_IN(OpenPBR_Re
     bsdf.diffuse = openpbr_diffuse_lobe_empty(1.0f);
     bsdf.diffuse_transmission = openpbr_diffuse_lobe_empty(-1.0f);
     bsdf.transmission = openpbr_dielectric_lobe_empty(OPENPBR_LOBE_ID_SPECULAR_TRANSMISSION);
+}
 
-    if (bsdf.inside)
-    {
-        // Inside: the dielectric interface seen from the denser side. Light leaving crosses the
-        // coat once and the fuzz (approximated as view-independent factors).
-        const vec3 exit_factor =
-            (coat_weight > 0.0f ? mix(vec3(1.0f), sqrt(inputs.coat_color), coat_weight) : vec3(1.0f)) *
-            (fuzz_weight > 0.0f ? 1.0f - fuzz_weight * openpbr_fuzz_albedo_white(1.0f, inputs.fuzz_roughness) : 1.0f);
-        bsdf.transmission = openpbr_interface_lobe_prepare(opacity, exit_factor, alpha, table_alpha, eta_channels, view);
-        const float total = opacity + (1.0f - opacity);
-        bsdf.probability_transmission = opacity / total;
-        bsdf.probability_pass_through = (1.0f - opacity) / total;
-        return bsdf;
-    }
+// The base layer's microsurface and IOR, which the base lobes, the interface seen from inside
+// and the coat's darkening share (spec "Base Substrate", "Coat").
+struct OpenPBR_BaseMicrosurface OPENPBR_DIFFERENTIABLE
+{
+    float coat_eta;                     // the coat's IOR relative to the exterior medium
+    float eta;                          // the base's relative IOR under the coat, modulated by specular_weight
+    vec3 eta_channels;                  // eta per channel (dispersion)
+    vec2 alpha;                         // the base's GGX alpha, roughened by the coat
+    OpenPBR_GgxLobeAlbedo lobe_albedo;  // its albedos at the view
+};
 
-    // ---- Fuzz (spec "Fuzz"): F f_fuzz + (1 - F E_fuzz) f_coated ----
-    float under_fuzz = opacity;
-    vec3 fuzz_albedo = vec3(0.0f);
-    if (fuzz_weight > 0.0f)
+// Every interface sees a relative IOR: the coat against the exterior medium, the base against
+// the exterior (uncoated) or the coat (spec "Coat": the base's relative IOR under the coat,
+// inverted where the coat is the denser medium), blended by coat_weight. The coat roughens the
+// base (spec "Coat", roughening).
+OPENPBR_INLINE_FUNC OpenPBR_BaseMicrosurface openpbr_prepare_base_microsurface(OPENPBR_IN(OpenPBR_ResolvedInputs) inputs,
+                                                                               vec3 rgb_wavelengths_nm, float exterior_ior,
+                                                                               vec3 view)
+{
+    const float coat_weight = inputs.coat_weight;
+    OpenPBR_BaseMicrosurface base;
+    base.coat_eta = openpbr_relative_ior(inputs.coat_ior, exterior_ior);
+    const float base_eta = openpbr_relative_ior(inputs.specular_ior, exterior_ior);
+    const float base_over_coat = inputs.coat_ior > inputs.specular_ior ? inputs.coat_ior / inputs.specular_ior
+                                                                       : inputs.specular_ior / inputs.coat_ior;
+    base.eta = openpbr_modulated_ior(
+        OPENPBR_WEIGHT_ACTIVE(coat_weight) ? mix(base_eta, base_over_coat, coat_weight) : base_eta, inputs.specular_weight);
+    base.eta_channels = openpbr_dispersive_ior(base.eta, inputs.transmission_dispersion_abbe_number,
+                                               inputs.geometry_thin_walled ? 0.0f : inputs.transmission_dispersion_scale,
+                                               rgb_wavelengths_nm);
+    const float coat_roughness = inputs.coat_roughness;
+    const float base_roughness =
+        OPENPBR_WEIGHT_ACTIVE(coat_weight)
+            ? mix(inputs.specular_roughness,
+                  pow(min(1.0f, pow(inputs.specular_roughness, 4.0f) + 2.0f * pow(coat_roughness, 4.0f)), 0.25f),
+                  coat_weight)
+            : inputs.specular_roughness;
+    base.alpha = openpbr_ggx_alpha(base_roughness, inputs.specular_roughness_anisotropy);
+    base.lobe_albedo = openpbr_ggx_lobe_albedo(base_roughness, inputs.specular_roughness_anisotropy, base.alpha, view);
+    return base;
+}
+
+// Fuzz (spec "Fuzz"): F f_fuzz + (1 - F E_fuzz) f_coated. Sets bsdf.fuzz where fuzz_weight > 0
+// (bsdf.fuzz_view prepared); returns what reaches the layers below, `layer_weight` (the
+// opacity) times 1 - F E_fuzz; `albedo` receives the fuzz's directional albedo at the view.
+OPENPBR_INLINE_FUNC float openpbr_prepare_fuzz_layer(OPENPBR_IN(OpenPBR_ResolvedInputs) inputs, float layer_weight,
+                                                     OPENPBR_INOUT(OpenPBR_PreparedBsdf) bsdf, OPENPBR_OUT(vec3) albedo)
+{
+    float under_fuzz = layer_weight;
+    albedo = vec3(0.0f);
+    if (OPENPBR_WEIGHT_ACTIVE(inputs.fuzz_weight))
     {
         const float fuzz_albedo_white = openpbr_fuzz_albedo_white(bsdf.fuzz_view.z, inputs.fuzz_roughness);
-        bsdf.fuzz = openpbr_fuzz_lobe_prepare(inputs, opacity, bsdf.fuzz_view, fuzz_albedo);
-        under_fuzz = opacity * (1.0f - fuzz_weight * fuzz_albedo_white);
+        bsdf.fuzz = openpbr_fuzz_lobe_prepare(inputs, layer_weight, bsdf.fuzz_view, albedo);
+        under_fuzz = layer_weight * (1.0f - inputs.fuzz_weight * fuzz_albedo_white);
     }
+    return under_fuzz;
+}
 
-    // ---- Coat (spec "Coat"): C f_coat + lerp(1, T_coat (1 - E_coat), C) darkening f_base ----
-    const float coat_mu = bsdf.coat_view.z;
-    vec3 coat_albedo = vec3(0.0f);
-    vec3 coat_view_transmittance = vec3(1.0f);
-    if (coat_weight > 0.0f)
+// Coat (spec "Coat"): C f_coat + lerp(1, T_coat (1 - E_coat), C) darkening f_base. Sets
+// bsdf.coat and the coat's absorption where coat_weight > 0 (bsdf.coat_view and
+// bsdf.coat_inverse_eta_squared prepared); `layer_weight` is what the fuzz leaves. `albedo`
+// receives E_coat at the view, `view_transmittance` T_coat towards the view (1 without
+// absorption).
+OPENPBR_INLINE_FUNC void openpbr_prepare_coat_layer(OPENPBR_IN(OpenPBR_ResolvedInputs) inputs, float coat_eta,
+                                                    float layer_weight, OPENPBR_INOUT(OpenPBR_PreparedBsdf) bsdf,
+                                                    OPENPBR_OUT(vec3) albedo, OPENPBR_OUT(vec3) view_transmittance)
+{
+    albedo = vec3(0.0f);
+    view_transmittance = vec3(1.0f);
+    if (OPENPBR_WEIGHT_ACTIVE(inputs.coat_weight))
     {
-        bsdf.coat = openpbr_coat_lobe_prepare(inputs, coat_eta, under_fuzz, bsdf.coat_view, coat_albedo);
-        bsdf.coat_absorbs = !(inputs.coat_color.x == 1.0f && inputs.coat_color.y == 1.0f && inputs.coat_color.z == 1.0f);
+        bsdf.coat = openpbr_coat_lobe_prepare(inputs, coat_eta, layer_weight, bsdf.coat_view, albedo);
+        bsdf.coat_absorbs = OPENPBR_AUTODIFF != 0 ||
+                            !(inputs.coat_color.x == 1.0f && inputs.coat_color.y == 1.0f && inputs.coat_color.z == 1.0f);
         if (bsdf.coat_absorbs)
         {
             bsdf.coat_half_log_color = 0.5f * log(max(inputs.coat_color, vec3(1e-6f)));
-            coat_view_transmittance =
-                openpbr_coat_transmittance(bsdf.coat_half_log_color, bsdf.coat_inverse_eta_squared, coat_mu);
+            view_transmittance =
+                openpbr_coat_transmittance(bsdf.coat_half_log_color, bsdf.coat_inverse_eta_squared, bsdf.coat_view.z);
         }
     }
+}
 
-    // ---- Base substrate, with unit layering factor first (albedos feed darkening) ----
+// The albedo estimates of the base lobes at the view, with a unit layering factor: what the
+// coat's darkening and lobe selection read.
+struct OpenPBR_BaseAlbedos OPENPBR_DIFFERENTIABLE
+{
+    vec3 specular;              // the dielectric reflection, (1 - base_metalness) included
+    vec3 diffuse;               // the diffuse reflection
+    vec3 metal;                 // the metal, base_metalness included
+    vec3 diffuse_transmission;  // the thin-walled subsurface sheet's transmission
+    vec3 transmission;          // the refraction into the interior (its selection estimate)
+    vec3 thin_transmission;     // the thin-walled un-deflected transmission
+    // What the coat's darkening sees of the slabs light enters (spec "Coat", darkening: E_b is
+    // "the albedos of the base slabs blended by their weights").
+    vec3 entering_slab;
+};
+
+// The base substrate (spec "Base Substrate"): the dielectric's specular reflection over its
+// translucent, subsurface and diffuse slabs (thin-walled: the sheet and the un-deflected
+// transmission), beside the metal, each where its weight is above zero. Sets those lobes in
+// bsdf (frames prepared) and returns their albedo estimates.
+OPENPBR_INLINE_FUNC OpenPBR_BaseAlbedos openpbr_prepare_base_layer(OPENPBR_IN(OpenPBR_ResolvedInputs) inputs,
+                                                                   OPENPBR_IN(OpenPBR_BaseMicrosurface) base,
+                                                                   float exterior_ior,
+                                                                   OPENPBR_INOUT(OpenPBR_PreparedBsdf) bsdf)
+{
+    const float metalness = inputs.base_metalness;
+    const float coat_weight = inputs.coat_weight;
+    const bool thin_walled = inputs.geometry_thin_walled;
+    const vec3 view = bsdf.view;
+    const vec2 alpha = base.alpha;
     // Dielectric specular reflection, tinted by specular_color (reflection from above only).
     // Thin film on the base (spec "Thin-film iridescence"): over the metal and the dielectric,
     // under the coat; the medium above it is the coat where there is one (IOR blended by
     // coat_weight, the spec's "depending on coat coverage"), otherwise the exterior medium.
     // Absolute IORs: the film's Fresnel model reads n_outside, n_film and n_base themselves.
-    const float film_outside_ior = coat_weight > 0.0f ? mix(exterior_ior, inputs.coat_ior, coat_weight) : exterior_ior;
+    const float film_outside_ior =
+        OPENPBR_WEIGHT_ACTIVE(coat_weight) ? mix(exterior_ior, inputs.coat_ior, coat_weight) : exterior_ior;
     const float dielectric_weight = 1.0f - metalness;
     // The film's lobe averages for both base factors at once (they share its evaluations).
     // The lobes build their Fresnel structs again: a film-free material then pays for no copy.
     OpenPBR_FresnelPair film_averages;
     film_averages.first = vec3(0.0f);
     film_averages.second = vec3(0.0f);
-    if (inputs.thin_film_weight > 0.0f)
+    if (OPENPBR_WEIGHT_ACTIVE(inputs.thin_film_weight))
     {
         OpenPBR_Fresnel metal_fresnel = openpbr_make_constant_fresnel(vec3(0.0f));
-        if (metalness > 0.0f)
+        if (OPENPBR_WEIGHT_ACTIVE(metalness))
         {
             metal_fresnel = openpbr_metal_fresnel(inputs, film_outside_ior);
         }
-        film_averages =
-            openpbr_base_film_estimate(openpbr_specular_reflection_fresnel(inputs, eta_channels.y, film_outside_ior),
-                                       dielectric_weight > 0.0f, metal_fresnel, metalness > 0.0f, view, alpha);
+        film_averages = openpbr_base_film_estimate(
+            openpbr_specular_reflection_fresnel(inputs, base.eta_channels.y, film_outside_ior),
+            OPENPBR_WEIGHT_ACTIVE(dielectric_weight), metal_fresnel, OPENPBR_WEIGHT_ACTIVE(metalness), view, alpha);
     }
     vec3 specular_albedo = vec3(0.0f);
-    if (dielectric_weight > 0.0f)
+    if (OPENPBR_WEIGHT_ACTIVE(dielectric_weight))
     {
-        bsdf.specular = openpbr_specular_reflection_lobe_prepare(inputs, eta_channels, alpha, base_lobe_albedo,
+        bsdf.specular = openpbr_specular_reflection_lobe_prepare(inputs, base.eta_channels, alpha, base.lobe_albedo,
                                                                  film_outside_ior, film_averages, view, specular_albedo);
     }
     const vec3 under_specular = vec3(1.0f) - specular_albedo;
@@ -426,39 +484,38 @@ OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare_lobes_of(OPENPBR_IN(OpenPBR_Re
     const float diffuse_fraction = (1.0f - translucent) * (1.0f - inputs.subsurface_weight);
     vec3 diffuse_weight = under_specular * (dielectric_weight * diffuse_fraction * inputs.base_weight);
     vec3 diffuse_color = inputs.base_color;
-    vec3 diffuse_estimate = vec3(0.0f);
-    vec3 diffuse_transmission_estimate = vec3(0.0f);
-    vec3 transmission_estimate = vec3(0.0f);
-    vec3 thin_transmission_estimate = vec3(0.0f);
-    // The albedo the coat's darkening sees of the slabs light enters (spec "Coat", darkening:
-    // E_b is "the albedos of the base slabs blended by their weights").
-    vec3 entering_slab_albedo = vec3(0.0f);
+    OpenPBR_BaseAlbedos albedos;
+    albedos.diffuse = vec3(0.0f);
+    albedos.diffuse_transmission = vec3(0.0f);
+    albedos.transmission = vec3(0.0f);
+    albedos.thin_transmission = vec3(0.0f);
+    albedos.entering_slab = vec3(0.0f);
     const float entering = dielectric_weight * (translucent + subsurface);
-    if (thin_walled && entering > 0.0f)
+    if (thin_walled && OPENPBR_WEIGHT_ACTIVE(entering))
     {
         // Thin-walled (spec "Thin-walled case"): subsurface becomes a thin scattering sheet
         // whose reflection joins the diffuse lobe; the translucent base becomes an un-deflected
         // transmission.
-        if (subsurface > 0.0f)
+        if (OPENPBR_WEIGHT_ACTIVE(subsurface))
         {
             bsdf.diffuse_transmission =
                 openpbr_diffuse_transmission_lobe_prepare(inputs, under_specular * (dielectric_weight * subsurface), view,
-                                                          diffuse_weight, diffuse_color, diffuse_transmission_estimate);
+                                                          diffuse_weight, diffuse_color, albedos.diffuse_transmission);
         }
-        if (translucent > 0.0f)
+        if (OPENPBR_WEIGHT_ACTIVE(translucent))
         {
             bsdf.thin_transmission =
                 openpbr_thin_transmission_lobe_prepare(inputs, under_specular * (dielectric_weight * translucent), alpha,
-                                                       base_lobe_albedo, view, thin_transmission_estimate);
+                                                       base.lobe_albedo, view, albedos.thin_transmission);
         }
     }
-    else if (entering > 0.0f)
+    else if (OPENPBR_WEIGHT_ACTIVE(entering))
     {
         // Refraction into the interior: translucent and subsurface (the medium does the rest).
         vec3 reflected = vec3(0.0f);
-        bsdf.transmission = openpbr_transmission_lobe_prepare(inputs, under_specular * dielectric_weight, translucent,
-                                                              subsurface, alpha, table_alpha, eta_channels, view,
-                                                              transmission_estimate, entering_slab_albedo, reflected);
+        bsdf.transmission = openpbr_transmission_lobe_prepare(
+            inputs, under_specular * dielectric_weight, translucent, subsurface, alpha, base.lobe_albedo.table_alpha,
+            base.eta_channels, view, albedos.transmission, albedos.entering_slab, reflected);
         // What the compensation's floor keeps from the refraction reflects instead (see
         // openpbr_transmission_lobe_prepare): the specular lobe's weight grows by that share of
         // its albedo, per channel where it reflects at all (specular_color 0 reflects nothing).
@@ -471,76 +528,93 @@ OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare_lobes_of(OPENPBR_IN(OpenPBR_Re
             specular_albedo += takes * reflected / dielectric_weight;
         }
     }
-    if (max(diffuse_weight.x, max(diffuse_weight.y, diffuse_weight.z)) > 0.0f)
+    if (OPENPBR_WEIGHT_ACTIVE(max(diffuse_weight.x, max(diffuse_weight.y, diffuse_weight.z))))
     {
-        bsdf.diffuse = openpbr_diffuse_lobe_prepare(inputs, diffuse_weight, diffuse_color, view, diffuse_estimate);
+        bsdf.diffuse = openpbr_diffuse_lobe_prepare(inputs, diffuse_weight, diffuse_color, view, albedos.diffuse);
     }
 
     // Metal (spec "Base Substrate"): F82-tint Fresnel.
-    vec3 metal_albedo = vec3(0.0f);
-    if (metalness > 0.0f)
+    albedos.metal = vec3(0.0f);
+    if (OPENPBR_WEIGHT_ACTIVE(metalness))
     {
-        bsdf.metal =
-            openpbr_metal_lobe_prepare(inputs, alpha, base_lobe_albedo, film_outside_ior, film_averages, view, metal_albedo);
+        bsdf.metal = openpbr_metal_lobe_prepare(inputs, alpha, base.lobe_albedo, film_outside_ior, film_averages, view,
+                                                albedos.metal);
     }
+    albedos.specular = specular_albedo * dielectric_weight;
+    return albedos;
+}
 
-    // Albedo estimates of the base lobes (unit layering factor).
-    const vec3 specular_estimate = specular_albedo * dielectric_weight;
-
-    // Darkening (spec "Coat", darkening): lerp(1, Delta, C delta), Delta = (1 - K)/(1 - E_b K),
-    // K = lerp(K_s, K_r, r_b); E_b the albedo of the whole base, its slabs blended by their mix
-    // weights (spec: translucent and subsurface slabs included, so a white glass base under a
-    // white coat is not darkened and passes the white furnace), taken at the view rather than
-    // only at normal incidence (a documented approximation). No coat: no darkening.
+// Darkening (spec "Coat", darkening): lerp(1, Delta, C delta), Delta = (1 - K)/(1 - E_b K),
+// K = lerp(K_s, K_r, r_b); E_b the albedo of the whole base, its slabs blended by their mix
+// weights (spec: translucent and subsurface slabs included, so a white glass base under a
+// white coat is not darkened and passes the white furnace), taken at the view rather than
+// only at normal incidence (a documented approximation). No coat: no darkening.
+OPENPBR_INLINE_FUNC vec3 openpbr_coat_darkening(OPENPBR_IN(OpenPBR_ResolvedInputs) inputs,
+                                                OPENPBR_IN(OpenPBR_BaseMicrosurface) base,
+                                                OPENPBR_IN(OpenPBR_BaseAlbedos) albedos, float coat_mu,
+                                                float coat_inverse_eta_squared)
+{
+    const float coat_weight = inputs.coat_weight;
     vec3 darkening = vec3(1.0f);
-    if (coat_weight > 0.0f)
+    if (OPENPBR_WEIGHT_ACTIVE(coat_weight))
     {
         const vec3 base_albedo =
-            openpbr_saturate(specular_estimate + diffuse_estimate + metal_albedo + diffuse_transmission_estimate +
-                             entering_slab_albedo + thin_transmission_estimate);
-        const float k_specular = openpbr_fresnel_dielectric(coat_mu, coat_eta);
-        const float k_rough = 1.0f - (1.0f - openpbr_average_fresnel(coat_eta)) * bsdf.coat_inverse_eta_squared;
-        const float specular_f0 = openpbr_dielectric_f0(eta_base);
+            openpbr_saturate(albedos.specular + albedos.diffuse + albedos.metal + albedos.diffuse_transmission +
+                             albedos.entering_slab + albedos.thin_transmission);
+        const float k_specular = openpbr_fresnel_dielectric(coat_mu, base.coat_eta);
+        const float k_rough = 1.0f - (1.0f - openpbr_average_fresnel(base.coat_eta)) * coat_inverse_eta_squared;
+        const float specular_f0 = openpbr_dielectric_f0(base.eta);
         const float base_surface_roughness =
             mix(mix(1.0f, inputs.specular_roughness, min(specular_f0 * inputs.specular_weight, 1.0f)),
-                inputs.specular_roughness, metalness);
+                inputs.specular_roughness, inputs.base_metalness);
         const float k = mix(k_specular, k_rough, base_surface_roughness);
         const vec3 delta = vec3(1.0f - k) / max(vec3(1.0f) - base_albedo * k, vec3(1e-6f));
         darkening = mix(vec3(1.0f), delta, coat_weight * inputs.coat_darkening);
     }
+    return darkening;
+}
 
-    // Layering factors on every base lobe: fuzz and opacity, coat absorption and darkening.
-    bsdf.under_coat_constant = darkening * (under_fuzz * (1.0f - coat_weight));
-    bsdf.under_coat_absorbing = darkening * (under_fuzz * coat_weight * (1.0f - coat_albedo.x)) * coat_view_transmittance;
-    bsdf.under_coat_transmitted = bsdf.under_coat_constant + bsdf.under_coat_absorbing;
-    // Estimate for selection: the light-side transmittance taken equal to the view side's.
-    const vec3 under_reflected = bsdf.under_coat_constant + bsdf.under_coat_absorbing * coat_view_transmittance;
+// The estimates of the layers above the base that lobe selection reads besides the base's.
+struct OpenPBR_LayerAlbedos OPENPBR_DIFFERENTIABLE
+{
+    vec3 fuzz;             // the fuzz's directional albedo, weights included
+    vec3 coat;             // E_coat per unit coat weight
+    float under_fuzz;      // what the fuzz leaves the coat (opacity included)
+    vec3 under_reflected;  // the base's layering factor for light reflected back to the view side
+};
 
-    // Selection probability proportional to each lobe's estimated albedo (luminance), weighted
-    // by the path's channel weights; the probabilities only steer sampling, so estimates need
-    // not be exact.
+// Selection probability proportional to each lobe's estimated albedo (luminance), weighted by
+// the path's channel weights; the probabilities only steer sampling, so estimates need not be
+// exact. Negligible lobes are dropped: probability 0, so eval, pdf and sample skip them alike.
+OPENPBR_FUNC void openpbr_select_lobes(OPENPBR_IN(OpenPBR_ResolvedInputs) inputs, OPENPBR_IN(OpenPBR_LayerAlbedos) layers,
+                                       OPENPBR_IN(OpenPBR_BaseAlbedos) albedos, vec3 path_throughput,
+                                       OPENPBR_INOUT(OpenPBR_PreparedBsdf) bsdf)
+{
+    const float metalness = inputs.base_metalness;
+    const float coat_weight = inputs.coat_weight;
+    const float dielectric_weight = 1.0f - metalness;
+    const vec3 under_reflected = layers.under_reflected;
     const vec3 channel = openpbr_selection_channel_weights(path_throughput);
     const float white = openpbr_selection_white_scale(channel);
-    const float fuzz_p = fuzz_weight > 0.0f ? openpbr_luminance(fuzz_albedo * channel) : 0.0f;
-    const float coat_p = coat_weight > 0.0f ? under_fuzz * coat_weight * coat_albedo.x * white : 0.0f;
+    const float fuzz_p = OPENPBR_WEIGHT_ACTIVE(inputs.fuzz_weight) ? openpbr_luminance(layers.fuzz * channel) : 0.0f;
+    const float coat_p = OPENPBR_WEIGHT_ACTIVE(coat_weight) ? layers.under_fuzz * coat_weight * layers.coat.x * white : 0.0f;
     const float specular_p =
-        dielectric_weight > 0.0f ? openpbr_luminance(specular_estimate * under_reflected * channel) : 0.0f;
+        OPENPBR_WEIGHT_ACTIVE(dielectric_weight) ? openpbr_luminance(albedos.specular * under_reflected * channel) : 0.0f;
     float metal_p = 0.0f;
-    if (metalness > 0.0f)
+    if (OPENPBR_WEIGHT_ACTIVE(metalness))
     {
-        const vec3 metal_selection_albedo =
-            max(metal_albedo, OPENPBR_METAL_SELECTION_FLOOR * bsdf.metal.weight * bsdf.metal.fresnel.tint);
+        const vec3 metal_selection_albedo = openpbr_max_first_at_tie(
+            albedos.metal, OPENPBR_METAL_SELECTION_FLOOR * bsdf.metal.weight * bsdf.metal.fresnel.tint);
         metal_p = openpbr_luminance(metal_selection_albedo * under_reflected * channel);
     }
-    const float diffuse_p = openpbr_luminance(diffuse_estimate * under_reflected * channel);
+    const float diffuse_p = openpbr_luminance(albedos.diffuse * under_reflected * channel);
     const float diffuse_transmission_p =
-        openpbr_luminance(diffuse_transmission_estimate * bsdf.under_coat_transmitted * channel);
-    const float transmission_p = openpbr_luminance(transmission_estimate * bsdf.under_coat_transmitted * channel);
-    const float thin_transmission_p = openpbr_luminance(thin_transmission_estimate * bsdf.under_coat_transmitted * channel);
-    const float pass_through_p = (1.0f - opacity) * white;
+        openpbr_luminance(albedos.diffuse_transmission * bsdf.under_coat_transmitted * channel);
+    const float transmission_p = openpbr_luminance(albedos.transmission * bsdf.under_coat_transmitted * channel);
+    const float thin_transmission_p = openpbr_luminance(albedos.thin_transmission * bsdf.under_coat_transmitted * channel);
+    const float pass_through_p = (1.0f - inputs.geometry_opacity) * white;
     const float raw_total = fuzz_p + coat_p + specular_p + metal_p + diffuse_p + diffuse_transmission_p + transmission_p +
                             thin_transmission_p + pass_through_p;
-    // Negligible lobes are dropped: probability 0, so eval, pdf and sample skip them alike.
     const float cut = OPENPBR_MIN_LOBE_PROBABILITY * raw_total;
     const float fuzz_kept = openpbr_kept_probability(fuzz_p, cut);
     const float coat_kept = openpbr_kept_probability(coat_p, cut);
@@ -565,6 +639,60 @@ OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare_lobes_of(OPENPBR_IN(OpenPBR_Re
     bsdf.probability_transmission = transmission_kept * inverse_total;
     bsdf.probability_thin_transmission = thin_transmission_kept * inverse_total;
     bsdf.probability_pass_through = pass_through_kept * inverse_total;
+}
+
+// Composes the lobes in the specification's layer order (fuzz over coat over base), each set up
+// by its prepare in slang/lobes/ only where its weight is above zero (a lobe whose weight is
+// zero costs nothing): the others keep the empty lobe and selection probability 0, which eval,
+// pdf and sample never look at. With a feature toggled off its weight is the constant 0, so the
+// compiler removes the set-up altogether. The emission is prepared apart
+// (openpbr_prepare_emission_of).
+// `inputs` have passed openpbr_prepare_inputs. exterior_ior: the absolute IOR of the medium the view is in (docs/api.md
+// "Exterior medium"), already passed through openpbr_contract_exterior_ior. `path_throughput` only steers lobe selection
+// (openpbr_selection_channel_weights); white gives the unweighted probabilities.
+OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare_lobes_of(OPENPBR_IN(OpenPBR_ResolvedInputs) inputs, vec3 view_world,
+                                                           vec3 rgb_wavelengths_nm, float exterior_ior, vec3 path_throughput)
+{
+    OpenPBR_PreparedBsdf bsdf = openpbr_prepare_frames(inputs, view_world);
+    const float opacity = inputs.geometry_opacity;
+    const float coat_weight = inputs.coat_weight;
+    const OpenPBR_BaseMicrosurface base =
+        openpbr_prepare_base_microsurface(inputs, rgb_wavelengths_nm, exterior_ior, bsdf.view);
+    openpbr_clear_lobes(bsdf);
+    bsdf.coat_inverse_eta_squared = 1.0f / (base.coat_eta * base.coat_eta);
+
+    if (bsdf.inside)
+    {
+        // Inside: the dielectric interface seen from the denser side. Light leaving crosses the
+        // coat once and the fuzz (approximated as view-independent factors).
+        const float fuzz_weight = inputs.fuzz_weight;
+        const vec3 exit_factor =
+            (OPENPBR_WEIGHT_ACTIVE(coat_weight) ? mix(vec3(1.0f), sqrt(inputs.coat_color), coat_weight) : vec3(1.0f)) *
+            (OPENPBR_WEIGHT_ACTIVE(fuzz_weight) ? 1.0f - fuzz_weight * openpbr_fuzz_albedo_white(1.0f, inputs.fuzz_roughness)
+                                                : 1.0f);
+        bsdf.transmission = openpbr_interface_lobe_prepare(opacity, exit_factor, base.alpha, base.lobe_albedo.table_alpha,
+                                                           base.eta_channels, bsdf.view);
+        const float total = opacity + (1.0f - opacity);
+        bsdf.probability_transmission = opacity / total;
+        bsdf.probability_pass_through = (1.0f - opacity) / total;
+        return bsdf;
+    }
+
+    OpenPBR_LayerAlbedos layers;
+    layers.under_fuzz = openpbr_prepare_fuzz_layer(inputs, opacity, bsdf, layers.fuzz);
+    vec3 coat_view_transmittance = vec3(1.0f);
+    openpbr_prepare_coat_layer(inputs, base.coat_eta, layers.under_fuzz, bsdf, layers.coat, coat_view_transmittance);
+    const OpenPBR_BaseAlbedos albedos = openpbr_prepare_base_layer(inputs, base, exterior_ior, bsdf);
+    const vec3 darkening = openpbr_coat_darkening(inputs, base, albedos, bsdf.coat_view.z, bsdf.coat_inverse_eta_squared);
+
+    // Layering factors on every base lobe: fuzz and opacity, coat absorption and darkening.
+    bsdf.under_coat_constant = darkening * (layers.under_fuzz * (1.0f - coat_weight));
+    bsdf.under_coat_absorbing =
+        darkening * (layers.under_fuzz * coat_weight * (1.0f - layers.coat.x)) * coat_view_transmittance;
+    bsdf.under_coat_transmitted = bsdf.under_coat_constant + bsdf.under_coat_absorbing;
+    // Estimate for selection: the light-side transmittance taken equal to the view side's.
+    layers.under_reflected = bsdf.under_coat_constant + bsdf.under_coat_absorbing * coat_view_transmittance;
+    openpbr_select_lobes(inputs, layers, albedos, path_throughput, bsdf);
     return bsdf;
 }
 
@@ -574,7 +702,7 @@ OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare_lobes_of(OPENPBR_IN(OpenPBR_Re
 // `inputs` have passed openpbr_prepare_inputs.
 OPENPBR_FUNC vec3 openpbr_prepare_emission_of(OPENPBR_IN(OpenPBR_ResolvedInputs) inputs, vec3 view_world, float exterior_ior)
 {
-    if (!(inputs.emission_luminance > 0.0f))
+    if (!OPENPBR_WEIGHT_ACTIVE(inputs.emission_luminance))
     {
         return vec3(0.0f);
     }
@@ -585,7 +713,7 @@ OPENPBR_FUNC vec3 openpbr_prepare_emission_of(OPENPBR_IN(OpenPBR_ResolvedInputs)
         return vec3(0.0f);
     }
     vec3 attenuation = vec3(1.0f);
-    if (inputs.coat_weight > 0.0f)
+    if (OPENPBR_WEIGHT_ACTIVE(inputs.coat_weight))
     {
         const float coat_mu = min(abs(dot(view, inputs.geometry_coat_basis.normal)), 1.0f);
         const vec3 half_log_color = 0.5f * log(max(inputs.coat_color, vec3(1e-6f)));
@@ -671,17 +799,17 @@ OPENPBR_FUNC OpenPBR_DiffuseSpecular openpbr_eval(OPENPBR_IN(OpenPBR_PreparedBsd
     // the lobe's code then disappears from eval (the probabilities are only known at run time).
     if ((OPENPBR_FEATURE_TRANSMISSION || OPENPBR_FEATURE_SUBSURFACE) && bsdf.inside)
     {
-        if (bsdf.probability_transmission > 0.0f)
+        if (OPENPBR_WEIGHT_ACTIVE(bsdf.probability_transmission))
         {
             value.specular = openpbr_dielectric_lobe_eval(bsdf.transmission, bsdf.view, light);
         }
         return value;
     }
-    if (OPENPBR_FEATURE_FUZZ && bsdf.probability_fuzz > 0.0f)
+    if (OPENPBR_FEATURE_FUZZ && OPENPBR_WEIGHT_ACTIVE(bsdf.probability_fuzz))
     {
         value.specular = openpbr_fuzz_lobe_eval(bsdf.fuzz, bsdf.fuzz_view, openpbr_to_local(bsdf.fuzz_basis, light_world));
     }
-    if (OPENPBR_FEATURE_COAT && bsdf.probability_coat > 0.0f)
+    if (OPENPBR_FEATURE_COAT && OPENPBR_WEIGHT_ACTIVE(bsdf.probability_coat))
     {
         // The coat carries no film (the film lies on the base): no film code here.
         value.specular = value.specular +
@@ -694,9 +822,9 @@ OPENPBR_FUNC OpenPBR_DiffuseSpecular openpbr_eval(OPENPBR_IN(OpenPBR_PreparedBsd
     {
         // The dielectric and metal lobes in one evaluation: one D, G2 and film for both. A lone
         // dielectric without a film takes the film-free lobe evaluation (no pair bookkeeping).
-        const bool specular_active = bsdf.probability_specular > 0.0f;
-        const bool metal_active = OPENPBR_FEATURE_METAL && bsdf.probability_metal > 0.0f;
-        if (!metal_active && !(OPENPBR_FEATURE_THIN_FILM && bsdf.specular.fresnel.film_weight > 0.0f))
+        const bool specular_active = OPENPBR_WEIGHT_ACTIVE(bsdf.probability_specular);
+        const bool metal_active = OPENPBR_FEATURE_METAL && OPENPBR_WEIGHT_ACTIVE(bsdf.probability_metal);
+        if (!metal_active && !(OPENPBR_FEATURE_THIN_FILM && OPENPBR_WEIGHT_ACTIVE(bsdf.specular.fresnel.film_weight)))
         {
             if (specular_active)
             {
@@ -708,7 +836,7 @@ OPENPBR_FUNC OpenPBR_DiffuseSpecular openpbr_eval(OPENPBR_IN(OpenPBR_PreparedBsd
             specular = openpbr_microfacet_reflection_lobe_pair_eval(bsdf.specular, specular_active, bsdf.metal, metal_active,
                                                                     bsdf.view, light);
         }
-        if (bsdf.probability_diffuse > 0.0f)
+        if (OPENPBR_WEIGHT_ACTIVE(bsdf.probability_diffuse))
         {
             diffuse = openpbr_diffuse_lobe_eval(bsdf.diffuse, bsdf.view, light);
         }
@@ -725,15 +853,17 @@ OPENPBR_FUNC OpenPBR_DiffuseSpecular openpbr_eval(OPENPBR_IN(OpenPBR_PreparedBsd
         value.specular = value.specular + specular * factor;
         return value;
     }
-    if ((OPENPBR_FEATURE_TRANSMISSION || OPENPBR_FEATURE_SUBSURFACE) && bsdf.probability_transmission > 0.0f)
+    if ((OPENPBR_FEATURE_TRANSMISSION || OPENPBR_FEATURE_SUBSURFACE) && OPENPBR_WEIGHT_ACTIVE(bsdf.probability_transmission))
     {
         specular = openpbr_dielectric_lobe_eval(bsdf.transmission, bsdf.view, light);
     }
-    if (OPENPBR_FEATURE_THIN_WALLED && OPENPBR_FEATURE_TRANSMISSION && bsdf.probability_thin_transmission > 0.0f)
+    if (OPENPBR_FEATURE_THIN_WALLED && OPENPBR_FEATURE_TRANSMISSION &&
+        OPENPBR_WEIGHT_ACTIVE(bsdf.probability_thin_transmission))
     {
         specular = specular + openpbr_microfacet_reflection_lobe_eval_with(bsdf.thin_transmission, bsdf.view, light, false);
     }
-    if (OPENPBR_FEATURE_THIN_WALLED && OPENPBR_FEATURE_SUBSURFACE && bsdf.probability_diffuse_transmission > 0.0f)
+    if (OPENPBR_FEATURE_THIN_WALLED && OPENPBR_FEATURE_SUBSURFACE &&
+        OPENPBR_WEIGHT_ACTIVE(bsdf.probability_diffuse_transmission))
     {
         diffuse = openpbr_diffuse_lobe_eval(bsdf.diffuse_transmission, bsdf.view, light);
     }
@@ -746,7 +876,7 @@ OPENPBR_FUNC float openpbr_pdf(OPENPBR_IN(OpenPBR_PreparedBsdf) bsdf, vec3 light
 {
     const vec3 light = openpbr_to_local(bsdf.basis, light_world);
     float pdf = 0.0f;
-    if ((OPENPBR_FEATURE_TRANSMISSION || OPENPBR_FEATURE_SUBSURFACE) && bsdf.probability_transmission > 0.0f)
+    if ((OPENPBR_FEATURE_TRANSMISSION || OPENPBR_FEATURE_SUBSURFACE) && OPENPBR_WEIGHT_ACTIVE(bsdf.probability_transmission))
     {
         pdf += bsdf.probability_transmission * openpbr_dielectric_lobe_pdf(bsdf.transmission, bsdf.view, light);
     }
@@ -754,33 +884,35 @@ OPENPBR_FUNC float openpbr_pdf(OPENPBR_IN(OpenPBR_PreparedBsdf) bsdf, vec3 light
     {
         return pdf;
     }
-    if (OPENPBR_FEATURE_FUZZ && bsdf.probability_fuzz > 0.0f)
+    if (OPENPBR_FEATURE_FUZZ && OPENPBR_WEIGHT_ACTIVE(bsdf.probability_fuzz))
     {
         pdf += bsdf.probability_fuzz *
                openpbr_fuzz_lobe_pdf(bsdf.fuzz, bsdf.fuzz_view, openpbr_to_local(bsdf.fuzz_basis, light_world));
     }
-    if (OPENPBR_FEATURE_COAT && bsdf.probability_coat > 0.0f)
+    if (OPENPBR_FEATURE_COAT && OPENPBR_WEIGHT_ACTIVE(bsdf.probability_coat))
     {
         pdf += bsdf.probability_coat * openpbr_microfacet_reflection_lobe_pdf(
                                            bsdf.coat, bsdf.coat_view, openpbr_to_local(bsdf.coat_basis, light_world));
     }
-    if (bsdf.probability_specular > 0.0f)
+    if (OPENPBR_WEIGHT_ACTIVE(bsdf.probability_specular))
     {
         pdf += bsdf.probability_specular * openpbr_microfacet_reflection_lobe_pdf(bsdf.specular, bsdf.view, light);
     }
-    if (OPENPBR_FEATURE_METAL && bsdf.probability_metal > 0.0f)
+    if (OPENPBR_FEATURE_METAL && OPENPBR_WEIGHT_ACTIVE(bsdf.probability_metal))
     {
         pdf += bsdf.probability_metal * openpbr_microfacet_reflection_lobe_pdf(bsdf.metal, bsdf.view, light);
     }
-    if (bsdf.probability_diffuse > 0.0f)
+    if (OPENPBR_WEIGHT_ACTIVE(bsdf.probability_diffuse))
     {
         pdf += bsdf.probability_diffuse * openpbr_diffuse_lobe_pdf(bsdf.diffuse, bsdf.view, light);
     }
-    if (OPENPBR_FEATURE_THIN_WALLED && OPENPBR_FEATURE_SUBSURFACE && bsdf.probability_diffuse_transmission > 0.0f)
+    if (OPENPBR_FEATURE_THIN_WALLED && OPENPBR_FEATURE_SUBSURFACE &&
+        OPENPBR_WEIGHT_ACTIVE(bsdf.probability_diffuse_transmission))
     {
         pdf += bsdf.probability_diffuse_transmission * openpbr_diffuse_lobe_pdf(bsdf.diffuse_transmission, bsdf.view, light);
     }
-    if (OPENPBR_FEATURE_THIN_WALLED && OPENPBR_FEATURE_TRANSMISSION && bsdf.probability_thin_transmission > 0.0f)
+    if (OPENPBR_FEATURE_THIN_WALLED && OPENPBR_FEATURE_TRANSMISSION &&
+        OPENPBR_WEIGHT_ACTIVE(bsdf.probability_thin_transmission))
     {
         pdf += bsdf.probability_thin_transmission *
                openpbr_microfacet_reflection_lobe_pdf(bsdf.thin_transmission, bsdf.view, light);

@@ -27,7 +27,7 @@ OPENPBR_NAMESPACE_BEGIN
 // NaN -> fallback, otherwise clamp to [low, high].
 OPENPBR_FUNC float openpbr_contract_float(float value, float low, float high, float fallback)
 {
-    return (value == value) ? clamp(value, low, high) : fallback;
+    return (value == value) ? OPENPBR_CONTRACT_CLAMP(value, low, high) : fallback;
 }
 
 OPENPBR_FUNC vec3 openpbr_contract_color(vec3 value, float low, float high, vec3 fallback)

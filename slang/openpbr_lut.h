@@ -162,6 +162,12 @@
 #define OPENPBR_LUT_FILM_CORE_SIZE 33
 #define OPENPBR_LUT_FILM_TAIL_NODES 4
 #define OPENPBR_LUT_FILM_QUANTILE_SIZE (OPENPBR_LUT_FILM_CORE_SIZE + 2 * OPENPBR_LUT_FILM_TAIL_NODES)
+// The bisection's steps over table 5's nodes (openpbr_film_lobe_cumulative): ceil(log2(nodes - 1)).
+#define OPENPBR_LUT_FILM_BISECTION_STEPS 6
+#if OPENPBR_LUT_FILM_QUANTILE_SIZE - 1 > (1 << OPENPBR_LUT_FILM_BISECTION_STEPS) || \
+    OPENPBR_LUT_FILM_QUANTILE_SIZE - 1 <= (1 << (OPENPBR_LUT_FILM_BISECTION_STEPS - 1))
+#error "OPENPBR_LUT_FILM_BISECTION_STEPS must be ceil(log2(OPENPBR_LUT_FILM_QUANTILE_SIZE - 1))"
+#endif
 #define OPENPBR_LUT_FILM_SIZE 32
 #define OPENPBR_LUT_FILM_CHANNEL_COUNT 2
 
@@ -832,7 +838,7 @@ OPENPBR_FUNC float openpbr_ggx_albedo_anisotropic(float mu, float roughness, flo
 
 // The four (view, roughness) nodes around a lobe and their bilinear weights; mu the view cosine,
 // alpha the lobe's (isotropic or root-mean-square) GGX alpha.
-struct OpenPBR_FilmLobeTable
+struct OpenPBR_FilmLobeTable OPENPBR_DIFFERENTIABLE
 {
     int mu_index;
     int r_index;
@@ -940,7 +946,7 @@ OPENPBR_FUNC vec2 openpbr_film_lobe_even_moment(OPENPBR_IN(OpenPBR_FilmLobeTable
 // 0.566 where the lobe has 0.4 % (an error of 0.024 in the filmed estimate of a film just past its
 // critical cosine); the power model puts the cell's light where its mean says. g is kept in
 // [1/64, 1/2] (k at most 63).
-struct OpenPBR_FilmLobeCell
+struct OpenPBR_FilmLobeCell OPENPBR_DIFFERENTIABLE
 {
     float low;           // q0, the cosine at the cell's start
     float width;         // q1 - q0
@@ -1018,8 +1024,10 @@ OPENPBR_FUNC vec2 openpbr_film_lobe_cumulative(OPENPBR_IN(OpenPBR_FilmLobeTable)
     // a count: a counted loop is unrolled by drivers into one table read per step (llvmpipe's
     // build of the module: the bisection over the even nodes with the tails tested first took
     // 0.48 G more instructions to compile, docs/thin-film-estimate.md).
+    // Each step halves high - low (rounding up): ceil(log2(last)) steps, 6 for the 41 nodes.
     int low = 0;
     int high = last;
+    OPENPBR_MAX_ITERS(OPENPBR_LUT_FILM_BISECTION_STEPS)
     while (high - low > 1)
     {
         const int middle = (low + high) / 2;

@@ -19,7 +19,7 @@ OPENPBR_NAMESPACE_BEGIN
 #define OPENPBR_DECLARE_BOOL(name, default_value) bool name;
 #define OPENPBR_DECLARE_BASIS(name, normal_input, tangent_input) OpenPBR_Basis name;
 
-struct OpenPBR_ResolvedInputs
+struct OpenPBR_ResolvedInputs OPENPBR_DIFFERENTIABLE
 {
     OPENPBR_PARAMETERS(OPENPBR_DECLARE_FLOAT, OPENPBR_DECLARE_COLOR, OPENPBR_DECLARE_VECTOR2, OPENPBR_DECLARE_BOOL,
                        OPENPBR_DECLARE_BASIS)

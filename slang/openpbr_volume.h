@@ -28,7 +28,7 @@
 
 OPENPBR_NAMESPACE_BEGIN
 
-struct OpenPBR_HomogeneousVolume
+struct OpenPBR_HomogeneousVolume OPENPBR_DIFFERENTIABLE
 {
     vec3 extinction;   // sigma_t per channel, 1/scene unit, in [0, OPENPBR_VOLUME_EXTINCTION_MAX]
     vec3 albedo;       // single-scattering albedo sigma_s / sigma_t, in [0, 1]
@@ -36,7 +36,7 @@ struct OpenPBR_HomogeneousVolume
     bool is_present;   // false: no interior medium (openpbr_make_volume then zeroes the other fields)
 };
 
-struct OpenPBR_VolumeDistanceSample
+struct OpenPBR_VolumeDistanceSample OPENPBR_DIFFERENTIABLE
 {
     float distance;  // to the scattering event, or t_max when the path passes through
     bool scattered;  // true: a real scattering event at `distance` < t_max

@@ -15,7 +15,8 @@ import { codeLines } from './source_text.mjs';
 
 const TOOL = 'slangc.mjs';
 
-// Target name -> [name getCompileTargets() uses, output file extension for -o DIR].
+// Target name -> [name getCompileTargets() uses, output file extension for -o DIR, numeric id
+// where that list lacks the name].
 const TARGETS = {
   spirv: ['SPIRV', 'spv'],
   hlsl: ['HLSL', 'hlsl'],
@@ -23,6 +24,9 @@ const TARGETS = {
   cuda: ['CUDA', 'cu'],
   glsl: ['GLSL', 'glsl'],
   wgsl: ['WGSL', 'wgsl'],
+  // C++ source (SLANG_CPP_SOURCE): the wasm build emits it, but getCompileTargets() does not
+  // list it, so its numeric id is given here.
+  cpp: ['CPP_SOURCE', 'cpp', 13],
 };
 const ALL_TARGETS = ['spirv', 'hlsl', 'metal', 'cuda', 'glsl'];
 
@@ -497,7 +501,7 @@ async function main(argv) {
 
   const outputs = [];
   for (const target of opts.targets) {
-    const targetId = ids[TARGETS[target][0]];
+    const targetId = ids[TARGETS[target][0]] ?? TARGETS[target][2];
     const code = compileTarget(slang, globalSession, targetId, target, plan, opts, timing);
     const file = outputPathFor(target, opts);
     writeOutput(file, code);

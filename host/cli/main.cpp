@@ -35,6 +35,7 @@ int main(int argc, char** argv)
     openpbr::host::add_stability_subcommand(app, context);
     openpbr::host::add_bench_accuracy_subcommand(app, context);  // after "bench" exists (features)
     openpbr::host::add_accuracy_layering_subcommand(app, context);
+    openpbr::host::add_fit_subcommand(app, context);
 
     CLI11_PARSE(app, argc, argv);
     return 0;

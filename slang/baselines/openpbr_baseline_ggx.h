@@ -32,7 +32,7 @@
 
 OPENPBR_NAMESPACE_BEGIN
 
-struct OpenPBR_BaselineGgx
+struct OpenPBR_BaselineGgx OPENPBR_DIFFERENTIABLE
 {
     vec3 diffuse_color;          // (1 - metalness) base_color
     vec3 f0;                     // mix(0.04, base_color, metalness)

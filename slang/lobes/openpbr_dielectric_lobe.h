@@ -49,7 +49,7 @@
 
 OPENPBR_NAMESPACE_BEGIN
 
-struct OpenPBR_DielectricLobe
+struct OpenPBR_DielectricLobe OPENPBR_DIFFERENTIABLE
 {
     vec3 reflection_weight;    // multiplies F D G2 / (4 o.n); 0 for the transmission-only form
     vec3 transmission_weight;  // multiplies the BTDF (including compensation and tint)
@@ -66,7 +66,9 @@ struct OpenPBR_DielectricLobe
 
 // Whether dispersion gives the channels different IORs (each channel then refracts, and is
 // compensated, with its own).
-OPENPBR_FUNC bool openpbr_channels_differ(vec3 eta) { return !(eta.x == eta.y && eta.y == eta.z); }
+// The differentiable build treats every IOR as dispersive, so the derivative with respect to the
+// dispersion at scale 0 is kept.
+OPENPBR_FUNC bool openpbr_channels_differ(vec3 eta) { return OPENPBR_AUTODIFF != 0 || !(eta.x == eta.y && eta.y == eta.z); }
 
 // Width w_T (radians) of the refracted lobe at view cosine mu (see the header): |1 - 1/eta|
 // alpha / (mu^2 + alpha^2), the widest channel for a dispersive eta.
@@ -184,6 +186,7 @@ OPENPBR_FUNC vec3 openpbr_dielectric_lobe_eval(OPENPBR_IN(OpenPBR_DielectricLobe
     const vec3 weight = light.z > 0.0f ? lobe.reflection_weight : lobe.transmission_weight;
     vec3 value = vec3(0.0f);
     const int channel_count = openpbr_dielectric_lobe_channel_count(lobe);
+    OPENPBR_MAX_ITERS(3)  // one channel, or three where dispersive
     for (int channel = 0; channel < channel_count; ++channel)
     {
         value = openpbr_with_channel(
@@ -197,6 +200,7 @@ OPENPBR_FUNC float openpbr_dielectric_lobe_pdf(OPENPBR_IN(OpenPBR_DielectricLobe
     // Dispersive: one-sample MIS over the channel IORs, each chosen with probability 1/3.
     float pdf_sum = 0.0f;
     const int channel_count = openpbr_dielectric_lobe_channel_count(lobe);
+    OPENPBR_MAX_ITERS(3)  // one channel, or three where dispersive
     for (int channel = 0; channel < channel_count; ++channel)
     {
         pdf_sum += openpbr_dielectric_lobe_channel(lobe, view, light, openpbr_channel_of(lobe.eta, channel)).y;
@@ -294,7 +298,7 @@ OPENPBR_FUNC float openpbr_transmission_floor_share(float mu, float table_alpha,
 
 // A rough dielectric's compensation per channel: the albedo (openpbr_dielectric_compensation_albedo)
 // and, entering from outside, the floor's share (openpbr_transmission_floor_share; 0 from inside).
-struct OpenPBR_DielectricCompensation
+struct OpenPBR_DielectricCompensation OPENPBR_DIFFERENTIABLE
 {
     vec3 albedo;
     vec3 floor_share;
@@ -320,8 +324,11 @@ OPENPBR_FUNC OpenPBR_DielectricCompensation openpbr_dielectric_compensation(floa
     OpenPBR_DielectricCompensation compensation;
     compensation.albedo = vec3(0.0f);
     compensation.floor_share = vec3(0.0f);
-    for (int channel = first_channel; channel < end_channel; ++channel)
+    // Counted from 0: Slang's reverse mode fails on a loop whose counter starts at a run-time value.
+    OPENPBR_MAX_ITERS(3)  // one channel, or three where dispersive
+    for (int step = 0; step < end_channel - first_channel; ++step)
     {
+        const int channel = first_channel + step;
         const float channel_eta = openpbr_channel_of(eta, channel);
         const float albedo = openpbr_dielectric_compensation_albedo(mu, table_alpha, channel_eta, lambda_view, from_inside);
         const float floor_share =

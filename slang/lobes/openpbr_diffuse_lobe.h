@@ -22,7 +22,7 @@
 
 OPENPBR_NAMESPACE_BEGIN
 
-struct OpenPBR_DiffuseLobe
+struct OpenPBR_DiffuseLobe OPENPBR_DIFFERENTIABLE
 {
     vec3 single_scatter_a;  // weight * rho * A / pi
     vec3 single_scatter_b;  // weight * rho * B / pi
@@ -56,12 +56,13 @@ OPENPBR_FUNC OpenPBR_DiffuseLobe openpbr_diffuse_lobe_init(vec3 weight, vec3 rho
     // 1 - E_avg is 0 at sigma = 0, where the multiple-scattering term vanishes anyway.
     const float one_minus_e_avg = 1.0f - e_avg;
     const vec3 rho_ms = rho * rho * e_avg / (vec3(1.0f) - rho * one_minus_e_avg);
-    lobe.multiple_scatter = one_minus_e_avg > 1e-6f
-                                ? weight * rho_ms * (max(1.0f - e_view, 0.0f) * OPENPBR_INV_PI / one_minus_e_avg)
-                                : vec3(0.0f);
+    lobe.multiple_scatter =
+        one_minus_e_avg > 1e-6f
+            ? weight * rho_ms * (openpbr_max_first_at_tie(1.0f - e_view, 0.0f) * OPENPBR_INV_PI / one_minus_e_avg)
+            : vec3(0.0f);
     // Albedo = rho E(mu_o) + rho_ms (1 - E(mu_o)): the multiple-scattering term integrates
     // (1 - E(mu_i)) cos over the hemisphere to pi (1 - E_avg), cancelling its denominator.
-    lobe.albedo = weight * (rho * e_view + rho_ms * max(1.0f - e_view, 0.0f));
+    lobe.albedo = weight * (rho * e_view + rho_ms * openpbr_max_first_at_tie(1.0f - e_view, 0.0f));
     return lobe;
 }
 
@@ -92,16 +93,17 @@ OPENPBR_FUNC vec3 openpbr_diffuse_lobe_eval(OPENPBR_IN(OpenPBR_DiffuseLobe) lobe
     const float mu_o = abs(view.z);
     const float mu_i = l.z;
     vec3 value = lobe.single_scatter_a * mu_i;
-    if (lobe.sigma > 0.0f)
+    if (OPENPBR_WEIGHT_ACTIVE(lobe.sigma))
     {
         // (s / t) mu_i is formed as s (mu_i / t): s / t alone overflows when view and light
         // are both grazing (mu 1e-40, s ~ 1), while mu_i / max(mu_i, mu_o) stays in [0, 1].
         const float s = dot(l, vec3(view.x, view.y, mu_o)) - mu_i * mu_o;
         const float s_over_t_cos = s > 0.0f ? s * (mu_i / max(mu_i, mu_o)) : s * mu_i;
-        value = value + lobe.single_scatter_b * s_over_t_cos +
-                lobe.multiple_scatter * (max(1.0f - openpbr_eon_fon_albedo(mu_i, lobe.sigma), 0.0f) * mu_i);
+        value =
+            value + lobe.single_scatter_b * s_over_t_cos +
+            lobe.multiple_scatter * (openpbr_max_first_at_tie(1.0f - openpbr_eon_fon_albedo(mu_i, lobe.sigma), 0.0f) * mu_i);
     }
-    return max(value, vec3(0.0f));
+    return openpbr_max_first_at_tie(value, vec3(0.0f));
 }
 
 OPENPBR_FUNC float openpbr_diffuse_lobe_pdf(OPENPBR_IN(OpenPBR_DiffuseLobe) lobe, vec3 view, vec3 light)

@@ -146,7 +146,7 @@ inline const float* openpbr_fuzz_ltc_data = nullptr;
 
 OPENPBR_NAMESPACE_BEGIN
 
-struct OpenPBR_FuzzLobe
+struct OpenPBR_FuzzLobe OPENPBR_DIFFERENTIABLE
 {
     vec3 weight;  // weight * fuzz_color * R(mu_o, alpha): the albedo and the constant sample weight
     float ltc_a;  // M^-1 = [[a, 0, b], [0, a, 0], [0, 0, 1]] in the view's azimuthal frame

@@ -51,7 +51,7 @@ OPENPBR_NAMESPACE_END
 
 OPENPBR_NAMESPACE_BEGIN
 
-struct OpenPBR_LobeSample
+struct OpenPBR_LobeSample OPENPBR_DIFFERENTIABLE
 {
     vec3 direction;                  // sampled light direction, local frame
     vec3 delta_weight;               // for delta lobes only: the lobe's value / its discrete probability 1

@@ -24,7 +24,7 @@
 
 OPENPBR_NAMESPACE_BEGIN
 
-struct OpenPBR_MicrofacetReflectionLobe
+struct OpenPBR_MicrofacetReflectionLobe OPENPBR_DIFFERENTIABLE
 {
     vec3 weight;               // layering weight times energy compensation
     vec2 alpha;                // (alpha_t, alpha_b)
@@ -183,7 +183,7 @@ OPENPBR_FUNC OpenPBR_LobeSample openpbr_microfacet_reflection_lobe_sample(OPENPB
 
 // The single-scattering albedos of one GGX lobe that compensation and layering read, for its
 // view (computed once in prepare).
-struct OpenPBR_GgxLobeAlbedo
+struct OpenPBR_GgxLobeAlbedo OPENPBR_DIFFERENTIABLE
 {
     // Alpha of the isotropic look-ups of E_T0 and E_RT: the root mean square of
     // (alpha_t, alpha_b), which OpenPBR's anisotropy mapping keeps equal to r^2 (spec
@@ -218,7 +218,7 @@ OPENPBR_FUNC OpenPBR_GgxLobeAlbedo openpbr_ggx_lobe_albedo(float roughness, floa
     result.albedo = is_delta ? 1.0f : openpbr_ggx_albedo(view.z, result.table_alpha);
     result.reflection_alpha = result.table_alpha;
     result.reflection_scale = 1.0f;
-    if (anisotropy > 0.0f && !is_delta)
+    if (OPENPBR_WEIGHT_ACTIVE(anisotropy) && !is_delta)
     {
         const float cos_phi_squared = openpbr_cos_azimuth_squared(view);
         result.albedo *= openpbr_ggx_anisotropy_ratio(view.z, roughness, anisotropy, cos_phi_squared);
@@ -456,6 +456,10 @@ OPENPBR_FUNC float openpbr_ggx_lobe_dielectric_reflection_albedo(float mu, float
     (OPENPBR_FILM_ESTIMATE_CRITICAL_CUTS > OPENPBR_FILM_ESTIMATE_VERY_WIDE_SEGMENTS + 1 \
          ? OPENPBR_FILM_ESTIMATE_CRITICAL_CUTS                                          \
          : OPENPBR_FILM_ESTIMATE_VERY_WIDE_SEGMENTS + 1)
+// The steps of the merge of thresholds and share bounds in openpbr_base_film_estimate: each but
+// the last advances next_share (at most SHARE_SEGMENTS times) or next_threshold (at most
+// CRITICAL_SEGMENTS - 1 times).
+#define OPENPBR_FILM_ESTIMATE_MERGE_STEPS (OPENPBR_FILM_ESTIMATE_SHARE_SEGMENTS + OPENPBR_FILM_ESTIMATE_CRITICAL_SEGMENTS)
 // The step of table 5's even nodes between equal shares (8 of 32 for quarters).
 #define OPENPBR_FILM_ESTIMATE_SHARE_STEP ((OPENPBR_LUT_FILM_CORE_SIZE - 1) / OPENPBR_FILM_ESTIMATE_SHARE_SEGMENTS)
 
@@ -511,6 +515,7 @@ OPENPBR_FUNC vec2 openpbr_film_segment_point(OPENPBR_IN(OpenPBR_FilmLobeTable) t
     vec2 quartile_paths = vec2(0.0f);
     float median = 0.0f;
     const int look_ups = at_median ? 3 : 2;
+    OPENPBR_MAX_ITERS(3)  // the quartiles and the median
     for (int look_up = 0; look_up < look_ups; ++look_up)
     {
         // p = 0.25, 0.75, 0.5 of the segment's share.
@@ -557,8 +562,8 @@ OPENPBR_FUNC OpenPBR_FresnelPair openpbr_base_film_estimate(OPENPBR_IN(OpenPBR_F
                                                             OPENPBR_IN(OpenPBR_Fresnel) metal, bool metal_active, vec3 view,
                                                             vec2 alpha)
 {
-    const bool dielectric_filmed = dielectric_active && dielectric.film_weight > 0.0f;
-    const bool metal_filmed = metal_active && metal.film_weight > 0.0f;
+    const bool dielectric_filmed = dielectric_active && OPENPBR_WEIGHT_ACTIVE(dielectric.film_weight);
+    const bool metal_filmed = metal_active && OPENPBR_WEIGHT_ACTIVE(metal.film_weight);
     OpenPBR_Fresnel untinted = dielectric;
     untinted.tint = vec3(1.0f);
     // Both factors carry the same film (openpbr_add_thin_film).
@@ -614,6 +619,7 @@ OPENPBR_FUNC OpenPBR_FresnelPair openpbr_base_film_estimate(OPENPBR_IN(OpenPBR_F
                              : wide    ? OPENPBR_FILM_ESTIMATE_WIDE_SEGMENTS
                                        : OPENPBR_FILM_ESTIMATE_PLAIN_SEGMENTS;
         const int step = (OPENPBR_LUT_FILM_CORE_SIZE - 1) / segments;
+        OPENPBR_MAX_ITERS(OPENPBR_FILM_ESTIMATE_VERY_WIDE_SEGMENTS)  // segments - 1 cuts, at most the very wide lobe's
         for (int segment = 1; segment < segments; ++segment)
         {
             cuts[cut_count] = float(segment * step);
@@ -656,6 +662,7 @@ OPENPBR_FUNC OpenPBR_FresnelPair openpbr_base_film_estimate(OPENPBR_IN(OpenPBR_F
         // The first step reads the first bound (below every cut, -1 is no cut): one read site.
         int next_share = 0;
         float share_bound = -1.0f;
+        OPENPBR_MAX_ITERS(OPENPBR_FILM_ESTIMATE_MERGE_STEPS)
         for (;;)
         {
             // Bounds at or above 1 (past every threshold) are not cuts.
@@ -693,6 +700,7 @@ OPENPBR_FUNC OpenPBR_FresnelPair openpbr_base_film_estimate(OPENPBR_IN(OpenPBR_F
     // call site, both bases in each evaluation.
     vec2 start = vec2(0.0f);
     int start_node = 0;
+    OPENPBR_MAX_ITERS(OPENPBR_FILM_ESTIMATE_MAX_SEGMENTS)  // cut_count fills cuts[], that many at most
     for (int index = 0; index < cut_count; ++index)
     {
         const float cut = cuts[index];
@@ -794,7 +802,7 @@ OPENPBR_FUNC OpenPBR_Fresnel openpbr_specular_reflection_fresnel(OPENPBR_IN(Open
                                                                  float film_outside_ior)
 {
     OpenPBR_Fresnel fresnel = openpbr_make_dielectric_fresnel(eta, inputs.specular_color);
-    if (inputs.thin_film_weight > 0.0f)
+    if (OPENPBR_WEIGHT_ACTIVE(inputs.thin_film_weight))
     {
         fresnel = openpbr_add_thin_film(fresnel, inputs.thin_film_weight, inputs.thin_film_thickness, inputs.thin_film_ior,
                                         film_outside_ior);
@@ -805,8 +813,8 @@ OPENPBR_FUNC OpenPBR_Fresnel openpbr_specular_reflection_fresnel(OPENPBR_IN(Open
 OPENPBR_FUNC OpenPBR_Fresnel openpbr_metal_fresnel(OPENPBR_IN(OpenPBR_ResolvedInputs) inputs, float film_outside_ior)
 {
     OpenPBR_Fresnel fresnel = openpbr_make_f82_fresnel(inputs.base_weight * inputs.base_color, inputs.specular_color,
-                                                       vec3(min(inputs.specular_weight, 1.0f)));
-    if (inputs.thin_film_weight > 0.0f)
+                                                       vec3(openpbr_min_first_at_tie(inputs.specular_weight, 1.0f)));
+    if (OPENPBR_WEIGHT_ACTIVE(inputs.thin_film_weight))
     {
         fresnel = openpbr_add_thin_film(fresnel, inputs.thin_film_weight, inputs.thin_film_thickness, inputs.thin_film_ior,
                                         film_outside_ior);
@@ -837,7 +845,7 @@ openpbr_specular_reflection_lobe_prepare(OPENPBR_IN(OpenPBR_ResolvedInputs) inpu
     // With a film, E[f^R] moves by the film's change of the Fresnel factor averaged over the
     // lobe, times the lobe's F = 1 albedo (the tables hold no film): exact for a mirror.
     vec3 reflection_albedo = vec3(plain_reflection_albedo);
-    if (fresnel.film_weight > 0.0f)
+    if (OPENPBR_WEIGHT_ACTIVE(fresnel.film_weight))
     {
         reflection_albedo = max(reflection_albedo + film_averages.first * base_lobe_albedo.albedo, vec3(0.0f));
     }
@@ -861,8 +869,9 @@ OPENPBR_FUNC OpenPBR_MicrofacetReflectionLobe openpbr_metal_lobe_prepare(
     const OpenPBR_MicrofacetReflectionLobe metal = openpbr_microfacet_reflection_lobe_init(
         metal_compensation * metalness, alpha, fresnel, OPENPBR_LOBE_ID_METAL, 1.0f, view);
     // The filmed factor averaged over the lobe; without a film, the factor at the view.
-    const vec3 mean_fresnel =
-        fresnel.film_weight > 0.0f ? film_averages.second : openpbr_fresnel_evaluate_without_film(fresnel, mu);
+    const vec3 mean_fresnel = OPENPBR_WEIGHT_ACTIVE(fresnel.film_weight)
+                                  ? film_averages.second
+                                  : openpbr_fresnel_evaluate_without_film(fresnel, mu);
     albedo =
         openpbr_saturate(metal_compensation * mean_fresnel * (metal.is_delta ? 1.0f : base_lobe_albedo.albedo)) * metalness;
     return metal;

@@ -7,7 +7,7 @@
 
 OPENPBR_NAMESPACE_BEGIN
 
-struct OpenPBR_Basis
+struct OpenPBR_Basis OPENPBR_DIFFERENTIABLE
 {
     vec3 tangent;    // x axis, e.g. the direction of anisotropic stretching
     vec3 bitangent;  // y axis

@@ -68,7 +68,7 @@ OPENPBR_FUNC vec3 openpbr_fresnel_f82(vec3 f0, vec3 f82_coefficient, float cos_t
 #define OPENPBR_FRESNEL_F82 1u
 #define OPENPBR_FRESNEL_NONE 2u  // F = 1 (times tint): thin-walled transmission, table generation
 
-struct OpenPBR_Fresnel
+struct OpenPBR_Fresnel OPENPBR_DIFFERENTIABLE
 {
     uint kind;             // OPENPBR_FRESNEL_DIELECTRIC, _F82 or _NONE
     float eta;             // dielectric: n_transmitted / n_incident, e.g. 1.5
@@ -165,7 +165,7 @@ OPENPBR_FUNC vec3 openpbr_fresnel_evaluate(OPENPBR_IN(OpenPBR_Fresnel) fresnel, 
     const vec3 plain = openpbr_fresnel_plain(fresnel, cos_theta);
     // OPENPBR_FEATURE_THIN_FILM (slang/openpbr_features.h): with the toggle a constant 0 the
     // film code below is compiled out of every lobe that reads a Fresnel factor.
-    if (!(OPENPBR_FEATURE_THIN_FILM && fresnel.film_weight > 0.0f))
+    if (!(OPENPBR_FEATURE_THIN_FILM && OPENPBR_WEIGHT_ACTIVE(fresnel.film_weight)))
     {
         return fresnel.tint * plain;
     }
@@ -181,7 +181,7 @@ OPENPBR_FUNC vec3 openpbr_fresnel_evaluate(OPENPBR_IN(OpenPBR_Fresnel) fresnel, 
 // under the same film): equal to two openpbr_fresnel_evaluate calls, with the film's spectral
 // harmonics computed once for both (openpbr_thin_film_model_bases). An inactive factor
 // is 0.
-struct OpenPBR_FresnelPair
+struct OpenPBR_FresnelPair OPENPBR_DIFFERENTIABLE
 {
     vec3 first;
     vec3 second;
@@ -206,8 +206,8 @@ OPENPBR_FUNC OpenPBR_FresnelPair openpbr_fresnel_evaluate_base_pair_spread(OPENP
     {
         pair.second = openpbr_fresnel_plain(metal, cos_theta);
     }
-    const bool dielectric_filmed = dielectric_active && dielectric.film_weight > 0.0f;
-    const bool metal_filmed = metal_active && metal.film_weight > 0.0f;
+    const bool dielectric_filmed = dielectric_active && OPENPBR_WEIGHT_ACTIVE(dielectric.film_weight);
+    const bool metal_filmed = metal_active && OPENPBR_WEIGHT_ACTIVE(metal.film_weight);
     // OPENPBR_FEATURE_THIN_FILM: compiled out with the toggle a constant 0, as in
     // openpbr_fresnel_evaluate. Both factors carry the same film (openpbr_add_thin_film).
     if (OPENPBR_FEATURE_THIN_FILM && (dielectric_filmed || metal_filmed))

@@ -77,6 +77,25 @@ OPENPBR_FUNC vec3 openpbr_square(vec3 x) { return x * x; }
 OPENPBR_FUNC float openpbr_saturate(float x) { return saturate(x); }
 OPENPBR_FUNC vec3 openpbr_saturate(vec3 x) { return saturate(x); }
 OPENPBR_FUNC float openpbr_max3(vec3 v) { return max(v.x, max(v.y, v.z)); }
+// max(a, b) whose derivative at a tie is a's, e.g. a term floored at 0 that is 0 exactly where a
+// weight is 0 and grows from there: the differentiable build compares (Slang's max gives half the
+// derivative to each argument at a tie); the plain build keeps max.
+OPENPBR_FUNC float openpbr_max_first_at_tie(float a, float b)
+{
+    return OPENPBR_AUTODIFF != 0 ? (a >= b ? a : b) : max(a, b);
+}
+// min(a, b) whose derivative at a tie is a's (as openpbr_max_first_at_tie), e.g. a weight capped
+// at 1 whose derivative at 1 is the one from below.
+OPENPBR_FUNC float openpbr_min_first_at_tie(float a, float b)
+{
+    return OPENPBR_AUTODIFF != 0 ? (a <= b ? a : b) : min(a, b);
+}
+OPENPBR_FUNC vec3 openpbr_max_first_at_tie(vec3 a, vec3 b)
+{
+    return OPENPBR_AUTODIFF != 0 ? vec3(openpbr_max_first_at_tie(a.x, b.x), openpbr_max_first_at_tie(a.y, b.y),
+                                        openpbr_max_first_at_tie(a.z, b.z))
+                                 : max(a, b);
+}
 
 // sqrt that never sees a negative argument produced by rounding.
 OPENPBR_FUNC float openpbr_safe_sqrt(float x) { return openpbr_sqrt(max(x, 0.0f)); }

@@ -155,7 +155,7 @@ OPENPBR_FUNC float openpbr_thin_film_normal_term(float n, float n_o, float outsi
     return (n - n_o) * (n + n_o) + outside_normal_term;
 }
 
-struct OpenPBR_ThinFilmInputs
+struct OpenPBR_ThinFilmInputs OPENPBR_DIFFERENTIABLE
 {
     float cos_o;
     float n_o;
@@ -196,7 +196,7 @@ OPENPBR_FUNC float openpbr_thin_film_spread_phase_variance(float optical_path_sp
 // ---- The stack at one channel ------------------------------------------------------------------
 
 // One polarization's Airy series R(delta) = mean + 2 amplitude sum_{m>=1} Re(z^m), z = rho e^{i delta}.
-struct OpenPBR_ThinFilmPolarization
+struct OpenPBR_ThinFilmPolarization OPENPBR_DIFFERENTIABLE
 {
     float mean;          // C0: the incoherent reflectance (average over the film phase)
     float amplitude;     // A = -T12 T23 / (T12 + R12 T23)
@@ -206,7 +206,7 @@ struct OpenPBR_ThinFilmPolarization
 };
 
 // Everything about the film and base that does not depend on wavelength, for one channel.
-struct OpenPBR_ThinFilmStack
+struct OpenPBR_ThinFilmStack OPENPBR_DIFFERENTIABLE
 {
     OpenPBR_ThinFilmPolarization s;
     OpenPBR_ThinFilmPolarization p;
@@ -340,7 +340,7 @@ OPENPBR_FUNC float openpbr_thin_film_evanescent_reflectance(OPENPBR_IN(OpenPBR_T
 
 // ---- Spectral lobe average (Belcour & Barla's Fourier-domain integration) --------------------
 
-struct OpenPBR_ThinFilmLobePhase
+struct OpenPBR_ThinFilmLobePhase OPENPBR_DIFFERENTIABLE
 {
     vec2 phasor;            // e^{i 2 pi OPD nu_j}
     vec2 one_minus_phasor;  // 1 - phasor, exact near a zero phase
@@ -390,7 +390,7 @@ OPENPBR_FUNC float openpbr_thin_film_lobe_tail(OPENPBR_IN(OpenPBR_ThinFilmPolari
 }
 
 // N^2 and N cos_b = sqrt(N^2 - (n_o sin theta)^2) of a base, the two numbers the stack needs.
-struct OpenPBR_ThinFilmBase
+struct OpenPBR_ThinFilmBase OPENPBR_DIFFERENTIABLE
 {
     vec2 ior_squared;
     vec2 normal_term;
@@ -423,7 +423,7 @@ OPENPBR_FUNC OpenPBR_ThinFilmStack openpbr_thin_film_conductor_stack(OPENPBR_IN(
 // loop whose body exists once in the compiled code (Mesa's NIR inlines every call: written out
 // lobe by lobe and channel by channel, one film evaluation compiled to 24 copies of the lobe
 // code, and the whole module took 15 s to build on llvmpipe).
-struct OpenPBR_ThinFilmSpectralLobe
+struct OpenPBR_ThinFilmSpectralLobe OPENPBR_DIFFERENTIABLE
 {
     float nu;     // centre, um^-1
     float sigma;  // deviation, um^-1
@@ -474,7 +474,7 @@ OPENPBR_FUNC OpenPBR_ThinFilmSpectralLobe openpbr_thin_film_spectral_lobe(int in
 
 // The film's spectral harmonics at one angle (see the top): H_c(m) for m = 1 .. 4 per RGB
 // channel, real and imaginary parts. They depend on the film and the angle only.
-struct OpenPBR_ThinFilmHarmonics
+struct OpenPBR_ThinFilmHarmonics OPENPBR_DIFFERENTIABLE
 {
     vec3 real_1;
     vec3 imaginary_1;
@@ -533,7 +533,7 @@ OPENPBR_FUNC OpenPBR_ThinFilmHarmonics openpbr_thin_film_harmonics(float optical
 
 // rho^m for m = 1 .. 4 in x .. w, real and imaginary parts: what both harmonic sums weight the
 // film's harmonics by.
-struct OpenPBR_ThinFilmRhoPowers
+struct OpenPBR_ThinFilmRhoPowers OPENPBR_DIFFERENTIABLE
 {
     vec4 real;
     vec4 imaginary;
@@ -565,7 +565,7 @@ OPENPBR_FUNC vec3 openpbr_thin_film_harmonic_sum(OPENPBR_IN(OpenPBR_ThinFilmPola
 // One channel's harmonics H_c(m), m = 1 .. 4 in x .. w: what a conductor's stack reads, since
 // each of its channels has its own base (summing all three there and keeping one cost twice
 // the sum).
-struct OpenPBR_ThinFilmChannelHarmonics
+struct OpenPBR_ThinFilmChannelHarmonics OPENPBR_DIFFERENTIABLE
 {
     vec4 real;
     vec4 imaginary;
@@ -652,7 +652,7 @@ OPENPBR_FUNC float openpbr_thin_film_optical_path_difference(OPENPBR_IN(OpenPBR_
 // base_n + i base_k per RGB channel), or over both at once: the base layer's two Fresnel
 // factors at one microfacet angle (spec "Thin-film iridescence": the film lies over the metal
 // and the dielectric), which share the film's harmonics. A base that is not wanted returns 0.
-struct OpenPBR_ThinFilmBasePair
+struct OpenPBR_ThinFilmBasePair OPENPBR_DIFFERENTIABLE
 {
     vec3 dielectric;
     vec3 conductor;
@@ -690,8 +690,12 @@ OPENPBR_FUNC OpenPBR_ThinFilmBasePair openpbr_thin_film_fresnel_bases(OPENPBR_IN
     }
     const OpenPBR_ThinFilmHarmonics harmonics =
         openpbr_thin_film_harmonics(openpbr_thin_film_optical_path_difference(inputs), inputs.optical_path_spread_um);
-    for (int stack_index = first_stack; stack_index < end_stack; ++stack_index)
+    // Counted from 0: Slang's reverse mode fails on a loop whose counter starts at a run-time
+    // value. At most the dielectric and the three conductor channels.
+    OPENPBR_MAX_ITERS(4)
+    for (int step = 0; step < end_stack - first_stack; ++step)
     {
+        const int stack_index = first_stack + step;
         OpenPBR_ThinFilmBase base;
         base.ior_squared = vec2(n_b * n_b, 0.0f);
         base.normal_term = vec2(sqrt(max(dielectric_normal_term, 0.0f)), 0.0f);

@@ -1,0 +1,429 @@
+// gradient_check.cpp - see gradient_check.h.
+#include "tests/autodiff/gradient_check.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "host/checks/stability.h"
+#include "host/scene/material_library.h"
+#include "host/scene/material_packing.h"
+#include "host/studies/feature_variants.h"
+#include "slang/openpbr_parameters.h"
+
+namespace openpbr::test {
+
+namespace {
+
+using host::gradients::Direction;
+using host::gradients::MaterialRecord;
+
+Direction unit(double x, double y, double z)
+{
+    const double length = std::sqrt(x * x + y * y + z * z);
+    return {float(x / length), float(y / length), float(z / length)};
+}
+
+// The directions every material is queried with: a reflection, a grazing view with its light across
+// the normal, a transmission from above, and both below the surface (a back face: inside a
+// translucent material, the interface seen from the denser side).
+struct DirectionPair
+{
+    const char* name;
+    Direction view;
+    Direction light;
+};
+
+const std::vector<DirectionPair>& direction_pairs()
+{
+    static const std::vector<DirectionPair> pairs = {
+        {"reflection", unit(0.3, 0.2, 0.93), unit(-0.4, 0.1, 0.91)},
+        {"grazing", unit(0.8, -0.3, 0.5), unit(-0.6, 0.55, 0.58)},
+        {"transmission", unit(0.1, 0.0, 0.99), unit(0.35, -0.2, -0.91)},
+        {"inside", unit(-0.25, 0.3, -0.92), unit(0.3, -0.1, -0.95)},
+    };
+    return pairs;
+}
+
+MaterialRecord pack(const OpenPBR_ResolvedInputs& inputs)
+{
+    MaterialRecord record{};
+    host::pack_material(inputs, record.data());
+    return record;
+}
+
+void add_with_every_direction(std::vector<GradientQuery>& queries, const std::string& label,
+                              const OpenPBR_ResolvedInputs& inputs)
+{
+    const MaterialRecord record = pack(inputs);
+    for (const DirectionPair& pair : direction_pairs())
+    {
+        queries.push_back({label + " " + pair.name, inputs, record, pair.view, pair.light});
+    }
+}
+
+bool finite_vector(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+// Whether every float of the packed record is finite (NaN and infinite inputs are the contract's
+// replacements, not points a derivative exists at).
+bool finite_record(const MaterialRecord& record)
+{
+    return std::all_of(record.begin(), record.end(), [](float value) { return std::isfinite(value); });
+}
+
+double input_value(const GradientQuery& query, const CheckedInput& input)
+{
+    switch (input.kind)
+    {
+    case CheckedInput::Kind::material: return query.material[input.index];
+    case CheckedInput::Kind::view: return query.view[input.index];
+    case CheckedInput::Kind::light: return query.light[input.index];
+    }
+    return 0.0;
+}
+
+}  // namespace
+
+std::vector<CheckedInput> checked_inputs()
+{
+    std::vector<CheckedInput> inputs;
+    std::size_t slot = 0;
+    auto add_float = [&](const std::string& name, double low, double high) {
+        inputs.push_back({CheckedInput::Kind::material, slot, name, low, high});
+        ++slot;
+    };
+#define OPENPBR_CHECK_FLOAT(name, default_value, low, high) add_float(#name, low, high);
+#define OPENPBR_CHECK_COLOR(name, default_r, default_g, default_b, low, high) \
+    add_float(#name ".r", low, high);                                         \
+    add_float(#name ".g", low, high);                                         \
+    add_float(#name ".b", low, high);
+#define OPENPBR_CHECK_VECTOR2(name, default_x, default_y) slot += 2;
+#define OPENPBR_CHECK_BOOL(name, default_value) slot += 1;
+#define OPENPBR_CHECK_BASIS(name, normal_input, tangent_input) slot += 9;
+    OPENPBR_PARAMETERS(OPENPBR_CHECK_FLOAT, OPENPBR_CHECK_COLOR, OPENPBR_CHECK_VECTOR2, OPENPBR_CHECK_BOOL,
+                       OPENPBR_CHECK_BASIS)
+#undef OPENPBR_CHECK_FLOAT
+#undef OPENPBR_CHECK_COLOR
+#undef OPENPBR_CHECK_VECTOR2
+#undef OPENPBR_CHECK_BOOL
+#undef OPENPBR_CHECK_BASIS
+    const char* axes[] = {"x", "y", "z"};
+    for (std::size_t axis = 0; axis < 3; ++axis)
+    {
+        inputs.push_back({CheckedInput::Kind::view, axis, std::string("view.") + axes[axis]});
+    }
+    for (std::size_t axis = 0; axis < 3; ++axis)
+    {
+        inputs.push_back({CheckedInput::Kind::light, axis, std::string("light.") + axes[axis]});
+    }
+    return inputs;
+}
+
+std::vector<std::pair<std::string, ValueWeights>> checked_scalars()
+{
+    using host::gradients::value_diffuse;
+    using host::gradients::value_emission;
+    using host::gradients::value_pdf;
+    using host::gradients::value_specular;
+    // Unequal channel weights, so a channel swapped or dropped shows.
+    ValueWeights eval{};
+    ValueWeights emission{};
+    ValueWeights pdf{};
+    const float channel_weights[] = {1.0f, 0.8f, 0.6f};
+    for (std::size_t channel = 0; channel < 3; ++channel)
+    {
+        eval[value_diffuse + channel] = channel_weights[channel];
+        eval[value_specular + channel] = 0.9f * channel_weights[channel];
+        emission[value_emission + channel] = channel_weights[channel];
+    }
+    pdf[value_pdf] = 1.0f;
+    return {{"eval", eval}, {"emission", emission}, {"pdf", pdf}};
+}
+
+std::vector<GradientQuery> lobe_queries()
+{
+    std::vector<GradientQuery> queries;
+    for (const host::FeatureVariant& variant : host::feature_variants())
+    {
+        add_with_every_direction(queries, variant.name, variant.inputs);
+    }
+    return queries;
+}
+
+std::vector<GradientQuery> bundled_material_queries(const std::string& directory)
+{
+    std::vector<GradientQuery> queries;
+    for (const host::Material& material : host::load_material_directory(directory))
+    {
+        add_with_every_direction(queries, material.name, material.inputs);
+    }
+    return queries;
+}
+
+// Whether a direction is at least `margin` (in cosine) away from the plane of `normal`.
+bool off_the_horizon(const glm::vec3& direction, const glm::vec3& normal, float margin)
+{
+    const float length_product = glm::length(direction) * glm::length(normal);
+    return length_product > 1e-6f && std::fabs(glm::dot(direction, normal)) >= margin * length_product;
+}
+
+// The stability corpus's degenerate points, which it exists to probe and where no float32
+// derivative is meaningful: an input at a float extreme (magnitude above 1e6, e.g. emission 3e38,
+// or a non-zero magnitude below 1e-6, e.g. denormals), a lobe collapsed to a line (anisotropy 1:
+// alpha_b sits on its floor 1e-7, a kink), a view or light within 1e-3 (cosine) of the tangent
+// plane (the tables' view floor 1e-4 is a kink, and float32 resolves neither side there).
+bool degenerate_case(const MaterialRecord& record, const OpenPBR_ResolvedInputs& inputs)
+{
+    for (const float value : record)
+    {
+        const float magnitude = std::fabs(value);
+        if (magnitude > 1e6f || (magnitude > 0.0f && magnitude < 1e-6f))
+        {
+            return true;
+        }
+    }
+    return inputs.specular_roughness_anisotropy >= 1.0f || inputs.coat_roughness_anisotropy >= 1.0f;
+}
+
+std::vector<GradientQuery> stability_corpus_queries(const std::string& path)
+{
+    // Up to this many lights per case (the corpus has 1658 in 187 cases), e.g. 3.
+    constexpr std::size_t lights_per_case = 3;
+    constexpr float horizon_margin = 1e-3f;
+    std::vector<GradientQuery> queries;
+    for (const host::StabilityCase& stability_case : host::load_stability_corpus(path))
+    {
+        const MaterialRecord record = pack(stability_case.inputs);
+        const glm::vec3 view = stability_case.view;
+        const glm::vec3 normal = stability_case.inputs.geometry_basis.normal;
+        // The gradient code prepares in air; non-finite inputs and views without a direction are
+        // the contract's replacements, not points a derivative exists at.
+        if (stability_case.exterior_ior != 1.0f || !finite_record(record) || !finite_vector(view) ||
+            !finite_vector(normal) || degenerate_case(record, stability_case.inputs) ||
+            !off_the_horizon(view, normal, horizon_margin))
+        {
+            continue;
+        }
+        std::size_t taken = 0;
+        for (const glm::vec3& light : stability_case.lights)
+        {
+            if (!finite_vector(light) || !(std::fabs(glm::length(light) - 1.0f) < 1e-5f) ||
+                !off_the_horizon(light, normal, horizon_margin) || taken == lights_per_case)
+            {
+                continue;
+            }
+            queries.push_back({stability_case.name + " light " + std::to_string(taken),
+                               stability_case.inputs,
+                               record,
+                               unit(view.x, view.y, view.z),
+                               {light.x, light.y, light.z}});
+            ++taken;
+        }
+    }
+    return queries;
+}
+
+bool documented_singular_point(const GradientQuery& query, const CheckedInput& input)
+{
+    const OpenPBR_ResolvedInputs& inputs = query.inputs;
+    // A direction where what is computed switches (docs/gradients.md, "Jumps"): at a critical
+    // angle of total internal reflection, where the thin film's estimate changes its segments,
+    // on the delta threshold of a mirror lobe. The stability corpus places directions there.
+    if (input.kind != CheckedInput::Kind::material)
+    {
+        return true;
+    }
+    if (input.kind == CheckedInput::Kind::material && input.name == "specular_weight")
+    {
+        return inputs.specular_weight == 0.0f;
+    }
+    const bool entering_input =
+        input.kind == CheckedInput::Kind::material &&
+        (input.name == "transmission_weight" || input.name == "subsurface_weight" || input.name == "base_metalness");
+    const float entering = (1.0f - inputs.base_metalness) *
+                           (inputs.transmission_weight + (1.0f - inputs.transmission_weight) * inputs.subsurface_weight);
+    const glm::vec3 view(query.view[0], query.view[1], query.view[2]);
+    return entering_input && entering == 0.0f && !inputs.geometry_thin_walled &&
+           glm::dot(view, inputs.geometry_basis.normal) < 0.0f;
+}
+
+std::vector<GradientQuery> special_point_queries()
+{
+    using Setter = void (*)(OpenPBR_ResolvedInputs&);
+    struct SpecialPoint
+    {
+        const char* name;
+        Setter set;
+    };
+    // Each is a point where a shortcut, a clamp or a table's end sits: the derivative there must be
+    // the one-sided one from inside the domain.
+    static const SpecialPoint points[] = {
+        {"metalness 0", [](OpenPBR_ResolvedInputs& m) { m.base_metalness = 0.0f; }},
+        {"metalness 1",
+         [](OpenPBR_ResolvedInputs& m) {
+             m.base_metalness = 1.0f;
+             m.base_color = glm::vec3(0.9f, 0.6f, 0.3f);
+         }},
+        {"coat weight 0 rough",
+         [](OpenPBR_ResolvedInputs& m) {
+             m.coat_weight = 0.0f;
+             m.coat_roughness = 0.3f;
+             m.coat_color = glm::vec3(0.8f, 0.6f, 0.5f);
+         }},
+        {"coat color 1", [](OpenPBR_ResolvedInputs& m) { m.coat_weight = 0.7f; }},
+        {"fuzz weight 0",
+         [](OpenPBR_ResolvedInputs& m) {
+             m.fuzz_weight = 0.0f;
+             m.fuzz_color = glm::vec3(0.9f, 0.5f, 0.4f);
+         }},
+        {"film weight 0 on metal",
+         [](OpenPBR_ResolvedInputs& m) {
+             m.base_metalness = 1.0f;
+             m.thin_film_weight = 0.0f;
+             m.thin_film_thickness = 0.4f;
+         }},
+        {"transmission weight 0", [](OpenPBR_ResolvedInputs& m) { m.specular_roughness = 0.2f; }},
+        {"transmission weight 1", [](OpenPBR_ResolvedInputs& m) { m.transmission_weight = 1.0f; }},
+        {"subsurface weight 0 thin-walled", [](OpenPBR_ResolvedInputs& m) { m.geometry_thin_walled = true; }},
+        {"dispersion scale 0",
+         [](OpenPBR_ResolvedInputs& m) {
+             m.transmission_weight = 1.0f;
+             m.transmission_dispersion_abbe_number = 30.0f;
+         }},
+        {"opacity 1 and 0.5 thin-walled",
+         [](OpenPBR_ResolvedInputs& m) {
+             m.geometry_opacity = 0.5f;
+             m.geometry_thin_walled = true;
+         }},
+        {"specular roughness 0", [](OpenPBR_ResolvedInputs& m) { m.specular_roughness = 0.0f; }},
+        {"roughness 0 under a coat of roughness 0",
+         [](OpenPBR_ResolvedInputs& m) {
+             m.specular_roughness = 0.0f;
+             m.coat_weight = 0.5f;
+         }},
+        {"fuzz roughness 0",
+         [](OpenPBR_ResolvedInputs& m) {
+             m.fuzz_weight = 0.8f;
+             m.fuzz_roughness = 0.0f;
+         }},
+        {"diffuse roughness 0 and anisotropy 0 under a coat",
+         [](OpenPBR_ResolvedInputs& m) {
+             m.coat_weight = 1.0f;
+             m.coat_roughness = 0.25f;
+         }},
+        {"coat IOR at its range end",
+         [](OpenPBR_ResolvedInputs& m) {
+             m.coat_weight = 0.6f;
+             m.coat_ior = OPENPBR_IOR_MAX;
+         }},
+        {"specular weight 0", [](OpenPBR_ResolvedInputs& m) { m.specular_weight = 0.0f; }},
+    };
+    std::vector<GradientQuery> queries;
+    for (const SpecialPoint& point : points)
+    {
+        OpenPBR_ResolvedInputs inputs = openpbr_make_default_resolved_inputs();
+        point.set(inputs);
+        add_with_every_direction(queries, point.name, inputs);
+    }
+    return queries;
+}
+
+double double_scalar(const GradientQuery& query, const ValueWeights& scalar, const CheckedInput& input, double step)
+{
+    DoubleMaterial material{};
+    std::copy(query.material.begin(), query.material.end(), material.begin());
+    DoubleDirection view = {query.view[0], query.view[1], query.view[2]};
+    DoubleDirection light = {query.light[0], query.light[1], query.light[2]};
+    switch (input.kind)
+    {
+    case CheckedInput::Kind::material: material[input.index] += step; break;
+    case CheckedInput::Kind::view: view[input.index] += step; break;
+    case CheckedInput::Kind::light: light[input.index] += step; break;
+    }
+    const DoubleValue value = double_query_value(material, view, light);
+    double sum = 0.0;
+    for (std::size_t index = 0; index < value.size(); ++index)
+    {
+        sum += double(scalar[index]) * value[index];
+    }
+    return sum;
+}
+
+double derivative_of(const host::gradients::QueryGradient& gradient, const CheckedInput& input)
+{
+    switch (input.kind)
+    {
+    case CheckedInput::Kind::material: return gradient.material[input.index];
+    case CheckedInput::Kind::view: return gradient.view[input.index];
+    case CheckedInput::Kind::light: return gradient.light[input.index];
+    }
+    return 0.0;
+}
+
+Comparison compare_with_differences(const GradientQuery& query, const ValueWeights& scalar, const CheckedInput& input,
+                                    double derivative, const Tolerance& tolerance)
+{
+    const double x = input_value(query, input);
+    // Steps of 1e-6 (relative for inputs above 1): double rounding in the difference is ~1e-10 of
+    // the value, and the second, 16 times smaller step tells a kink within the step from a smooth
+    // point.
+    const double step = 1e-6 * std::max(1.0, std::fabs(x));
+    const double short_step = step / 16.0;
+    // A side is usable unless stepping to it leaves the parameter's range (the contract's clamp):
+    // at a range end the derivative is the one-sided one from inside.
+    const bool left_usable = !(x >= input.low && x - step < input.low);
+    const bool right_usable = !(x <= input.high && x + step > input.high);
+    const double value = double_scalar(query, scalar, input, 0.0);
+    const double scale = std::max(std::fabs(value), tolerance.scale_floor);
+    auto allowed = [&](double reference) { return tolerance.relative * std::fabs(reference) + tolerance.absolute * scale; };
+    auto within = [&](double reference) { return std::fabs(derivative - reference) <= allowed(reference); };
+
+    double right = 0.0;
+    double right_short = 0.0;
+    bool right_smooth = false;
+    if (right_usable)
+    {
+        right = (double_scalar(query, scalar, input, step) - value) / step;
+        right_short = (double_scalar(query, scalar, input, short_step) - value) / short_step;
+        right_smooth = std::fabs(right - right_short) <= allowed(right_short);
+    }
+    double left = 0.0;
+    double left_short = 0.0;
+    bool left_smooth = false;
+    if (left_usable)
+    {
+        left = (value - double_scalar(query, scalar, input, -step)) / step;
+        left_short = (value - double_scalar(query, scalar, input, -short_step)) / short_step;
+        left_smooth = std::fabs(left - left_short) <= allowed(left_short);
+    }
+    Comparison comparison;
+    if (right_smooth && left_smooth && std::fabs(right - left) <= allowed(0.5 * (right + left)))
+    {
+        comparison.reference = 0.5 * (right + left);
+        comparison.agreement = within(comparison.reference) ? Agreement::smooth : Agreement::failed;
+    }
+    else if (right_smooth && within(right_short))
+    {
+        comparison.reference = right_short;
+        comparison.agreement = Agreement::one_sided;
+    }
+    else if (left_smooth && within(left_short))
+    {
+        comparison.reference = left_short;
+        comparison.agreement = Agreement::one_sided;
+    }
+    else if (!right_smooth && !left_smooth)
+    {
+        comparison.reference = right_usable ? right_short : left_short;
+        comparison.agreement = Agreement::singular;
+    }
+    else
+    {
+        comparison.reference = right_smooth ? right_short : left_short;
+        comparison.agreement = Agreement::failed;
+    }
+    comparison.error = std::fabs(derivative - comparison.reference) / std::max(allowed(comparison.reference), 1e-300);
+    return comparison;
+}
+
+}  // namespace openpbr::test
