@@ -110,6 +110,16 @@
 #define OPENPBR_DONT_UNROLL
 #endif
 
+// Prefix of a loop of at most 8 steps that GPU drivers keep rolled and C++ compilers unroll,
+// e.g. OPENPBR_ROLLED_ON_GPU for (int lobe = 0; lobe < 6; ++lobe) { ... }: OPENPBR_DONT_UNROLL on
+// the GPU backends (each step's code compiled once, a shorter build), `#pragma GCC unroll 8`
+// from the C++ backend (GCC and Clang at -O2 keep such a loop rolled, GCC unrolls it at -O3;
+// unrolled, the step's index is a constant and the selects it drives fold away). The loop
+// computes the same values either way.
+#ifndef OPENPBR_ROLLED_ON_GPU
+#define OPENPBR_ROLLED_ON_GPU OPENPBR_DONT_UNROLL
+#endif
+
 // Every backend must provide these; checked here so a new backend fails loudly.
 #if !defined(OPENPBR_FUNC) || !defined(OPENPBR_IN) || !defined(OPENPBR_INOUT) || !defined(OPENPBR_OUT) || \
     !defined(OPENPBR_UNUSED) || !defined(OPENPBR_NAMESPACE_BEGIN) || !defined(OPENPBR_NAMESPACE_END) ||   \
