@@ -1,4 +1,4 @@
-// OpenPBR 1.1 surface BSDF, single source. Include this one header from C++, GLSL, CUDA or
+// OpenPBR 1.1.1 surface BSDF, single source. Include this one header from C++, GLSL, CUDA or
 // Metal; Slang users `import openpbr;` (slang/openpbr.slang). See README.md.
 #ifndef OPENPBR_H
 #define OPENPBR_H

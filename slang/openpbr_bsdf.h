@@ -1,4 +1,4 @@
-// The OpenPBR 1.1 surface BSDF: prepare, eval, sample, pdf.
+// The OpenPBR 1.1.1 surface BSDF: prepare, eval, sample, pdf.
 //
 // Layering follows the specification's reduction to a mixture of lobes (spec "Reduction to a
 // mixture of lobes", docs/spec-notes.md 2.3) with albedo scaling:
@@ -48,8 +48,10 @@ struct OpenPBR_BsdfSample
 };
 
 // Wavelengths (nm) the three channels stand for when the caller passes none: the dominant
-// wavelengths of the Rec.709 primaries, e.g. for dispersion in an RGB renderer.
-#define OPENPBR_DEFAULT_RGB_WAVELENGTHS_NM vec3(612.0f, 549.0f, 465.0f)
+// wavelengths of the working space's primaries (slang/openpbr_working_space.h; e.g.
+// (611.4, 549.1, 464.2) for linear Rec.709, (628.8, 532.9, 467.2) for ACEScg), e.g. for
+// dispersion in an RGB renderer.
+#define OPENPBR_DEFAULT_RGB_WAVELENGTHS_NM OPENPBR_WORKING_SPACE_DOMINANT_WAVELENGTHS_NM
 
 // The same as a function, for callers that see the library through a module (Slang `import
 // openpbr;` exports declarations, not macros), e.g. to pass an exterior IOR to openpbr_prepare.

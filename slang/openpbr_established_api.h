@@ -26,7 +26,7 @@ OPENPBR_NAMESPACE_BEGIN
 // Constants.
 
 // The wavelengths (nm) the R, G, B channels stand for in an RGB renderer: the dominant
-// wavelengths of the Rec.709 primaries (OPENPBR_DEFAULT_RGB_WAVELENGTHS_NM), e.g. the
+// wavelengths of the working space's primaries (OPENPBR_DEFAULT_RGB_WAVELENGTHS_NM), e.g. the
 // rgb_wavelengths_nm of openpbr_prepare when the renderer does not trace spectra.
 OPENPBR_GLOBAL_CONSTANT vec3 OpenPBR_BaseRgbWavelengths_nm = OPENPBR_DEFAULT_RGB_WAVELENGTHS_NM;
 // IOR of vacuum (and, to 3e-4, air): the exterior_ior of a surface in the open.

@@ -2,7 +2,8 @@
 // OPENPBR_MODULE_CONSTANTS(X) calls X(type, NAME) for each, e.g. X(uint, OPENPBR_LOBE_TYPE_SPECULAR).
 // Lobe-type flags and lobe ids (slang/lobes/openpbr_lobe_common.h), specialization-constant ids
 // and feature bits (slang/openpbr_features.h), limits, table bindings and table layout
-// (slang/openpbr_lut.h, slang/lobes/openpbr_fuzz_lobe.h). The values stay in those headers; this
+// (slang/openpbr_lut.h, slang/lobes/openpbr_fuzz_lobe.h), the working colour space and its two
+// values (slang/openpbr_working_space.h). The values stay in those headers; this
 // is only the list, shared by the module and its test (tests/targets/test_module_exports.cpp).
 #ifndef OPENPBR_MODULE_CONSTANTS_H
 #define OPENPBR_MODULE_CONSTANTS_H
@@ -67,6 +68,9 @@
     X(uint, OPENPBR_LUT_GGX_ANISOTROPY_RATIO_OFFSET)      \
     X(uint, OPENPBR_LUT_TOTAL_COUNT)                      \
     X(uint, OPENPBR_FUZZ_LTC_SIZE)                        \
-    X(uint, OPENPBR_FUZZ_LTC_TOTAL_COUNT)
+    X(uint, OPENPBR_FUZZ_LTC_TOTAL_COUNT)                 \
+    X(uint, OPENPBR_WORKING_SPACE)                        \
+    X(uint, OPENPBR_WORKING_SPACE_LIN_REC709)             \
+    X(uint, OPENPBR_WORKING_SPACE_ACESCG)
 
 #endif

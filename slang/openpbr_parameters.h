@@ -1,4 +1,4 @@
-// The OpenPBR Surface 1.1 parameter table (spec "Parameter reference"; docs/spec-notes.md
+// The OpenPBR Surface 1.1.1 parameter table (spec "Parameter reference"; docs/spec-notes.md
 // section 1): every field of OpenPBR_ResolvedInputs, written once, with its type, default,
 // valid range, MaterialX input name and packing slot. Everything that lists the parameters is
 // an expansion of this table: the struct and its defaults (openpbr_resolved_inputs.h), the
@@ -22,6 +22,10 @@
 #define OPENPBR_LENGTH_MAX 1e18f
 // Emission up to 1e18 nits; beyond that a float sum of a few samples could overflow.
 #define OPENPBR_LUMINANCE_MAX 1e18f
+// emission_color is an HDR multiplier (spec 1.1.1: [0, inf)^3, e.g. (4, 2, 1) from an HDR
+// texture); up to 1e18 per channel, so emission_color x emission_luminance stays below 1e36 and
+// a hundred such sums below the largest float (3.4e38).
+#define OPENPBR_EMISSION_COLOR_MAX 1e18f
 // specular_weight may exceed 1 (spec range [0, inf)); 1e6 is far past where the modulated IOR
 // saturates (xi_s is further clamped to 1/F_s in prepare).
 #define OPENPBR_SPECULAR_WEIGHT_MAX 1e6f
@@ -74,7 +78,7 @@
     FLOAT(transmission_scatter_anisotropy, 0.0f, -1.0f, 1.0f)                                \
     FLOAT(transmission_dispersion_scale, 0.0f, 0.0f, 1.0f)                                   \
     FLOAT(transmission_dispersion_abbe_number, 20.0f, OPENPBR_ABBE_MIN, OPENPBR_ABBE_MAX)    \
-    /* Subsurface */                                                                         \
+    /* Subsurface; radius and radius_scale have no effect when thin-walled (spec 1.1.1) */   \
     FLOAT(subsurface_weight, 0.0f, 0.0f, 1.0f)                                               \
     COLOR(subsurface_color, 0.8f, 0.8f, 0.8f, 0.0f, 1.0f)                                    \
     FLOAT(subsurface_radius, 1.0f, 0.0f, OPENPBR_LENGTH_MAX)                                 \
@@ -97,7 +101,7 @@
     FLOAT(thin_film_ior, 1.4f, OPENPBR_IOR_MIN, OPENPBR_IOR_MAX)                             \
     /* Emission; luminance in nits */                                                        \
     FLOAT(emission_luminance, 0.0f, 0.0f, OPENPBR_LUMINANCE_MAX)                             \
-    COLOR(emission_color, 1.0f, 1.0f, 1.0f, 0.0f, 1.0f)                                      \
+    COLOR(emission_color, 1.0f, 1.0f, 1.0f, 0.0f, OPENPBR_EMISSION_COLOR_MAX)                \
     /* Geometry */                                                                           \
     FLOAT(geometry_opacity, 1.0f, 0.0f, 1.0f)                                                \
     BOOL(geometry_thin_walled, false)                                                        \

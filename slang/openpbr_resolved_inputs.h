@@ -1,4 +1,4 @@
-// OpenPBR Surface 1.1 parameters after texture/graph evaluation ("resolved"), one field per
+// OpenPBR Surface 1.1.1 parameters after texture/graph evaluation ("resolved"), one field per
 // parameter of the specification (docs/spec-notes.md section 1, spec "Parameter reference"),
 // plus geometry bases and two anisotropy-rotation extensions, declared from the parameter
 // table (openpbr_parameters.h), which gives each field's type, default, range and units.

@@ -630,6 +630,31 @@ std::vector<Material> conformance_materials(const std::vector<Material>& library
         inputs.geometry_opacity = 0.8f;
         materials.push_back(everything);
     }
+    // What OpenPBR 1.1.1 states, on every path (tests/bsdf/test_spec_1_1_1.cpp tests the same on
+    // the CPU): an HDR emission colour under a coat, a tinted metal at part weight, thin-walled
+    // subsurface with a radius that must have no effect.
+    Material hdr_emission = default_material();
+    hdr_emission.name = "HdrEmission";
+    hdr_emission.inputs.emission_color = glm::vec3(4.0f, 2.0f, 1.0f);
+    hdr_emission.inputs.emission_luminance = 50.0f;
+    hdr_emission.inputs.coat_weight = 0.5f;
+    materials.push_back(hdr_emission);
+    Material weighted_metal = default_material();
+    weighted_metal.name = "TintedMetalPartWeight";
+    weighted_metal.inputs.base_metalness = 1.0f;
+    weighted_metal.inputs.base_color = glm::vec3(0.95f, 0.64f, 0.54f);
+    weighted_metal.inputs.specular_color = glm::vec3(0.4f, 0.7f, 1.0f);
+    weighted_metal.inputs.specular_weight = 0.5f;
+    weighted_metal.inputs.specular_roughness = 0.35f;
+    materials.push_back(weighted_metal);
+    Material thin_subsurface = default_material();
+    thin_subsurface.name = "ThinWalledSubsurfaceRadius";
+    thin_subsurface.inputs.geometry_thin_walled = true;
+    thin_subsurface.inputs.subsurface_weight = 0.7f;
+    thin_subsurface.inputs.subsurface_color = glm::vec3(0.8f, 0.5f, 0.3f);
+    thin_subsurface.inputs.subsurface_radius = 5.0f;
+    thin_subsurface.inputs.subsurface_radius_scale = glm::vec3(0.1f, 0.9f, 0.3f);
+    materials.push_back(thin_subsurface);
     return materials;
 }
 

@@ -162,7 +162,8 @@ std::vector<float> nudge_random_numbers(const std::vector<float>& queries);
 std::vector<float> nudge_directions(const std::vector<float>& queries, int pattern);
 
 // Materials used by conformance: the given library plus synthetic materials that switch on
-// every lobe at partial weight.
+// every lobe at partial weight, and three that exercise what OpenPBR 1.1.1 states (an HDR
+// emission colour, a tinted metal at part weight, thin-walled subsurface with a radius).
 std::vector<Material> conformance_materials(const std::vector<Material>& library);
 
 // Deterministic query batch.

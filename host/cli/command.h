@@ -38,6 +38,8 @@ CLI::App* add_furnace_subcommand(CLI::App& parent, const CommandContext& context
 CLI::App* add_features_subcommand(CLI::App& parent, const CommandContext& context);
 CLI::App* add_stability_subcommand(CLI::App& parent, const CommandContext& context);
 CLI::App* add_bench_accuracy_subcommand(CLI::App& parent, const CommandContext& context);
+// `accuracy layering` (and `accuracy` when no other subcommand created it).
+CLI::App* add_accuracy_layering_subcommand(CLI::App& parent, const CommandContext& context);
 
 // Runs `action` (returning the exit status) as a subcommand's callback: a non-zero status and
 // any std::exception become CLI::RuntimeError(status), which CLI11_PARSE returns from main().

@@ -16,7 +16,7 @@
 
 int main(int argc, char** argv)
 {
-    CLI::App app{"openpbr: OpenPBR 1.1 BSDF tools (conformance, table generation, ...)"};
+    CLI::App app{"openpbr: OpenPBR 1.1.1 BSDF tools (conformance, table generation, ...)"};
     app.require_subcommand(1);
 
     std::string materials_directory = OPENPBR_DEFAULT_MATERIALS_DIR;
@@ -34,6 +34,7 @@ int main(int argc, char** argv)
     openpbr::host::add_features_subcommand(app, context);
     openpbr::host::add_stability_subcommand(app, context);
     openpbr::host::add_bench_accuracy_subcommand(app, context);  // after "bench" exists (features)
+    openpbr::host::add_accuracy_layering_subcommand(app, context);
 
     CLI11_PARSE(app, argc, argv);
     return 0;

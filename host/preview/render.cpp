@@ -13,6 +13,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
+#include "host/scene/colour_spaces.h"
 #include "host/scene/material_packing.h"
 #include "host/gpu/shipped_tables.h"
 #include "host/gpu/vulkan_runner.h"
@@ -68,6 +69,13 @@ void put3(std::vector<float>& scene, int index, Vec3 value)
     scene[std::size_t(index)] = value.x;
     scene[std::size_t(index) + 1] = value.y;
     scene[std::size_t(index) + 2] = value.z;
+}
+
+// A colour of the scene given in linear Rec.709, stored in the working space (docs/colour.md).
+void put_rec709(std::vector<float>& scene, int index, glm::vec3 rec709)
+{
+    const glm::vec3 working = rec709_to_working_space(rec709);
+    put3(scene, index, {working.x, working.y, working.z});
 }
 
 struct Layout
@@ -165,14 +173,15 @@ std::vector<float> make_scene(const RenderSettings& settings, const std::vector<
     const Vec3 light = {-3.5f, 5.5f, 3.5f};
     put3(scene, OPENPBR_RENDER_SCENE_LIGHT_CENTER, light);
     scene[OPENPBR_RENDER_SCENE_LIGHT_RADIUS] = 1.0f;
-    put3(scene, OPENPBR_RENDER_SCENE_LIGHT_RADIANCE, {40.0f, 38.0f, 34.0f});
-    put3(scene, OPENPBR_RENDER_SCENE_SKY_ZENITH, {0.16f, 0.26f, 0.5f});
-    put3(scene, OPENPBR_RENDER_SCENE_SKY_HORIZON, {0.7f, 0.75f, 0.85f});
+    // The light and sky colours are linear Rec.709 (viewer/src/scene.mjs converts the same).
+    put_rec709(scene, OPENPBR_RENDER_SCENE_LIGHT_RADIANCE, {40.0f, 38.0f, 34.0f});
+    put_rec709(scene, OPENPBR_RENDER_SCENE_SKY_ZENITH, {0.16f, 0.26f, 0.5f});
+    put_rec709(scene, OPENPBR_RENDER_SCENE_SKY_HORIZON, {0.7f, 0.75f, 0.85f});
     const float environment = settings.environment;
     put3(scene, OPENPBR_RENDER_SCENE_ENVIRONMENT,
          settings.furnace ? Vec3{environment, environment, environment} : Vec3{0.2f, 0.2f, 0.2f});
     put3(scene, OPENPBR_RENDER_SCENE_SUN_DIRECTION, normalized(light));
-    put3(scene, OPENPBR_RENDER_SCENE_SUN_GLOW, {0.6f, 0.45f, 0.25f});
+    put_rec709(scene, OPENPBR_RENDER_SCENE_SUN_GLOW, {0.6f, 0.45f, 0.25f});
     scene[OPENPBR_RENDER_SCENE_SUN_EXPONENT] = 12.0f;
     scene[OPENPBR_RENDER_SCENE_NITS_TO_UNITS] = kNitsToRenderUnits;
     scene[OPENPBR_RENDER_SCENE_CHECKER_SIZE] = 0.5f;

@@ -6,9 +6,11 @@
 // Units: radiance in "render units"; emission (nits) is converted with
 // kNitsToRenderUnits (1 render unit = 100 nits, SDR reference white), so the 10000-nit light
 // bulb material is 100 units and a 200-nit display 2 units. The sky is about 0.2 to 0.9 units,
-// the area light 40 units. Tone mapping: exposure, then the ACES filmic fit of Narkowicz
-// (2015), then the sRGB transfer function. Colors of the materials are used as linear
-// Rec.709 values (the loader does not convert color spaces).
+// the area light 40 units. Radiance is in the library's working space (the loader converts
+// the materials' colours into it; the scene's light and sky are given in linear Rec.709 and
+// converted too). The view transform (docs/colour.md): exposure, working space -> linear
+// Rec.709 (the display's primaries), the ACES filmic fit of Narkowicz (2015), then the sRGB
+// transfer function.
 #pragma once
 
 #include <cstdint>
@@ -159,7 +161,7 @@ struct RenderComparison
 
 RenderComparison compare_renders(const RenderImage& a, const RenderImage& b);
 
-// PNG of the tone-mapped image (exposure, ACES fit, sRGB), with the cell labels when asked.
+// PNG of the tone-mapped image (exposure, to Rec.709, ACES fit, sRGB), with the cell labels when asked.
 void write_render_png(const std::string& path, const RenderImage& image, float exposure, bool labels);
 
 // PNG of |a - b| x scale, per channel, gamma-encoded (sRGB transfer function, no tone curve).

@@ -8,6 +8,7 @@
 
 #include "host/preview/render.h"
 #include "host/preview/render_font.h"
+#include "host/scene/colour_spaces.h"
 
 #if defined(__GNUC__)
 #pragma GCC diagnostic push
@@ -89,12 +90,20 @@ void draw_labels(std::vector<std::uint8_t>& rgb, const RenderImage& image)
 
 }  // namespace
 
+// The view transform (docs/colour.md): working space x exposure -> linear Rec.709 (the
+// display's primaries; a component outside Rec.709 comes out negative and the tone curve clips
+// it to 0) -> the ACES fit per channel -> the sRGB transfer function.
 void write_render_png(const std::string& path, const RenderImage& image, float exposure, bool labels)
 {
     std::vector<std::uint8_t> rgb(std::size_t(image.width) * std::size_t(image.height) * 3);
-    for (std::size_t index = 0; index < rgb.size(); ++index)
+    for (std::size_t pixel = 0; pixel < rgb.size(); pixel += 3)
     {
-        rgb[index] = to_byte(srgb_encode(aces_fit(image.mean[index] * exposure)));
+        const glm::vec3 working(image.mean[pixel], image.mean[pixel + 1], image.mean[pixel + 2]);
+        const glm::vec3 display = working_space_to_display(working * exposure);
+        for (int channel = 0; channel < 3; ++channel)
+        {
+            rgb[pixel + std::size_t(channel)] = to_byte(srgb_encode(aces_fit(display[channel])));
+        }
     }
     if (labels) draw_labels(rgb, image);
     write_png(path, image.width, image.height, rgb);

@@ -1,9 +1,10 @@
 // material_library.cpp - MaterialX reader for constant-valued <open_pbr_surface> nodes.
 // Design: the parameter table (slang/openpbr_parameters.h, as C++ data in parameter_table.h)
-// maps every OpenPBR 1.1 input name to its MaterialX type and to where its value goes; parsing,
+// maps every OpenPBR 1.1.1 input name to its MaterialX type and to where its value goes; parsing,
 // validation, describe() and supported_input_names() are all driven by it, so adding an input
 // is one line there.
 #include "host/scene/material_library.h"
+#include "host/scene/colour_spaces.h"
 #include "host/scene/parameter_table.h"
 
 #include <algorithm>
@@ -68,7 +69,7 @@ ValueType value_type(const ParameterDescriptor& descriptor)
     return ValueType::float_value;
 }
 
-// Every OpenPBR 1.1 input in specification order ("Parameter reference"): the MaterialX inputs
+// Every OpenPBR 1.1.1 input in specification order ("Parameter reference"): the MaterialX inputs
 // of the parameter table (slang/openpbr_parameters.h), without the extensions.
 const std::vector<const ParameterDescriptor*>& input_table()
 {
@@ -300,6 +301,16 @@ std::string parse_float_list(const std::string_view text, std::vector<float>& co
     }
 }
 
+// "unknown colorspace 'name' (known: acescg, ...)", the same words as viewer/src/materialx.mjs.
+std::string unknown_colorspace_message(const std::string& name)
+{
+    return "unknown colorspace '" + name + "' (known: " + colour_space_names() + ")";
+}
+
+// The versions of the specification whose documents this loader reads: an <open_pbr_surface>
+// may name its node definition's version (MaterialX "version" attribute), e.g. "1.1.1".
+constexpr std::array<std::string_view, 2> supported_versions = {"1.1", "1.1.1"};
+
 // Attributes by which MaterialX connects an input to another node instead of a constant.
 constexpr std::array<const char*, 4> connection_attributes = {"nodename", "nodegraph", "output", "interfacename"};
 
@@ -317,7 +328,7 @@ void read_input(const SourceFile& source, const std::string& document_colorspace
     const ParameterDescriptor* const descriptor = find_input(name);
     if (descriptor == nullptr)
     {
-        source.fail(input_node, context + ": unknown input name (not an OpenPBR 1.1 input)");
+        source.fail(input_node, context + ": unknown input name (not an OpenPBR 1.1.1 input)");
     }
     const ValueType type = value_type(*descriptor);
     if (std::find(values.inputs_set.begin(), values.inputs_set.end(), name) != values.inputs_set.end())
@@ -343,13 +354,13 @@ void read_input(const SourceFile& source, const std::string& document_colorspace
         source.fail(input_node,
                     context + ": wrong type '" + type_attribute.value() + "', expected '" + type_name(type) + "'");
     }
-    // Colors are used as written; a color authored in another space would need a conversion
-    // this loader does not do, so say so instead of rendering the wrong color.
-    const std::string input_colorspace = input_node.attribute("colorspace").as_string();
-    if (!input_colorspace.empty() && input_colorspace != document_colorspace)
+    // An input's own colorspace overrides the document's (MaterialX "Color Spaces"); a name
+    // outside the table is an error on any input, though only color3 values are converted.
+    const pugi::xml_attribute input_colorspace = input_node.attribute("colorspace");
+    const std::string colorspace = input_colorspace ? input_colorspace.value() : document_colorspace;
+    if (input_colorspace && !colour_to_working_space(colorspace, glm::vec3(0.0f)))
     {
-        source.fail(input_node, context + ": colorspace '" + input_colorspace + "' differs from the document's '" +
-                                    document_colorspace + "'; color space conversion is not supported");
+        source.fail(input_node, context + ": " + unknown_colorspace_message(colorspace));
     }
     const pugi::xml_attribute value_attribute = input_node.attribute("value");
     if (!value_attribute)
@@ -388,6 +399,11 @@ void read_input(const SourceFile& source, const std::string& document_colorspace
         {
             value.vector = glm::vec3(components[0], components[1], components[2]);
         }
+        // Colors into the working space (docs/colour.md); vector3 inputs are directions.
+        if (type == ValueType::color3_value)
+        {
+            value.vector = *colour_to_working_space(colorspace, value.vector);
+        }
     }
     store_value(values, *descriptor, value);
     values.inputs_set.push_back(name);
@@ -396,6 +412,14 @@ void read_input(const SourceFile& source, const std::string& document_colorspace
 Material read_surface(const SourceFile& source, const std::string& document_colorspace, const pugi::xml_node& surface_node,
                       const std::string& material_name)
 {
+    const pugi::xml_attribute version = surface_node.attribute("version");
+    if (version && std::find(supported_versions.begin(), supported_versions.end(), std::string_view(version.value())) ==
+                       supported_versions.end())
+    {
+        source.fail(surface_node, "open_pbr_surface '" + std::string(surface_node.attribute("name").as_string()) +
+                                      "': version '" + version.value() +
+                                      "' is not supported (this loader reads OpenPBR 1.1 and 1.1.1)");
+    }
     SurfaceValues values;
     for (const pugi::xml_node& input_node : surface_node.children("input"))
     {
@@ -446,7 +470,14 @@ std::vector<Material> load_materialx_file(const std::string& path)
         throw MaterialError(source.location(root) + ": not a MaterialX document (root element is <" +
                             std::string(root.name()) + ">, expected <materialx>)");
     }
-    const std::string document_colorspace = root.attribute("colorspace").as_string();
+    // No colorspace on the document: the specification's default, ACEScg ("Metadata").
+    const pugi::xml_attribute colorspace_attribute = root.attribute("colorspace");
+    const std::string document_colorspace =
+        colorspace_attribute ? colorspace_attribute.value() : std::string(default_document_colour_space());
+    if (!colour_to_working_space(document_colorspace, glm::vec3(0.0f)))
+    {
+        source.fail(root, "<materialx>: " + unknown_colorspace_message(document_colorspace));
+    }
 
     // MaterialX element names are unique within their parent; nodename refers to top-level ones.
     std::map<std::string, pugi::xml_node> top_level_elements;

@@ -8,10 +8,13 @@
 // graphs and any other connected input are rejected with an error rather than silently
 // replaced by a default, because a silently wrong material is harder to notice than an error.
 //
-// Values are kept exactly as written, including values outside the ranges the specification
+// Values are kept as written, including values outside the ranges the specification
 // documents: openpbr_prepare clamps them (README "Input contract"), and a loader that clamped
-// too would hide what the file really says. Colors are not converted between color spaces;
-// the document's colorspace attribute is reported in Material::colorspace.
+// too would hide what the file really says. The one change: every color3 value is converted
+// from its colour space (its input's colorspace attribute, else the document's, else ACEScg,
+// the specification's default) into the library's working space (host/scene/colour_spaces.h,
+// docs/colour.md); an unknown colour space is an error naming it. An <open_pbr_surface> may
+// name its version: 1.1 and 1.1.1 are read, any other is an error.
 //
 // Link dependencies: pugixml (CMake: find_package(pugixml), target pugixml::pugixml), GLM
 // (header-only, via slang/openpbr_resolved_inputs.h); include directory: the repository root.
@@ -39,7 +42,7 @@ struct Material
 {
     std::string name;                        // the surfacematerial's name, e.g. "Glass"; the node's name for a bare node
     std::string file;                        // the path the material was loaded from, as given; empty for built-ins
-    std::string colorspace;                  // the document's colorspace attribute, e.g. "acescg"; may be empty
+    std::string colorspace;                  // the document's colour space, e.g. "acescg" (also when it names none)
     openpbr::OpenPBR_ResolvedInputs inputs;  // spec defaults, overridden by the file's values
     std::vector<std::string> inputs_set;     // OpenPBR input names given in the file, file order
 };
@@ -60,7 +63,7 @@ Material default_material();
 // listing only inputs whose value differs from the specification's default.
 std::string describe(const Material& material);
 
-// The names of every OpenPBR 1.1 input the loader understands, in specification order.
+// The names of every OpenPBR 1.1.1 input the loader understands, in specification order.
 std::vector<std::string> supported_input_names();
 
 }  // namespace openpbr::host

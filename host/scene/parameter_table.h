@@ -31,7 +31,7 @@ struct ParameterDescriptor
 {
     const char* name;  // the input name, e.g. "base_color", "geometry_normal"
     ParameterTarget target;
-    // True for OpenPBR 1.1 inputs (a MaterialX <open_pbr_surface> input of the same name);
+    // True for OpenPBR 1.1.1 inputs (a MaterialX <open_pbr_surface> input of the same name);
     // false for the extensions (the anisotropy rotations), which only the corpus reads.
     bool materialx = true;
 };

@@ -29,56 +29,44 @@ Vector normalized(const Vector& a) { return a * (1.0 / std::sqrt(dot(a, a))); }
 
 constexpr double pi = 3.14159265358979323846;
 
-// SplitMix64 (host/support/random.h): small, fast, and good enough for independent paths.
-struct Random
-{
-    SplitMix64 generator;
-    double next() { return generator.next_double(); }
-};
-
-// Smith Lambda of isotropic GGX for a direction of either hemisphere (depends on |tan theta|).
-double smith_lambda(const Vector& w, double alpha)
+// Smith Lambda of GGX for a direction of either hemisphere (depends on |tan theta| and, when
+// anisotropic, on the azimuth through the stretched slope).
+double smith_lambda(const Vector& w, double alpha_x, double alpha_y)
 {
     const double z2 = w.z * w.z;
     if (z2 <= 0.0)
     {
         return std::numeric_limits<double>::infinity();
     }
-    return 0.5 * (std::sqrt(1.0 + alpha * alpha * (w.x * w.x + w.y * w.y) / z2) - 1.0);
+    const double stretched = alpha_x == alpha_y ? alpha_x * alpha_x * (w.x * w.x + w.y * w.y)
+                                                : alpha_x * alpha_x * w.x * w.x + alpha_y * alpha_y * w.y * w.y;
+    return 0.5 * (std::sqrt(1.0 + stretched / z2) - 1.0);
 }
 
+double smith_lambda(const Vector& w, double alpha) { return smith_lambda(w, alpha, alpha); }
+
 // A normal visible from direction `from` (any hemisphere; Dupuy & Benyoub 2023 cap, see header).
-Vector sample_visible_normal(const Vector& from, double alpha, double u1, double u2)
+Vector sample_visible_normal(const Vector& from, double alpha_x, double alpha_y, double u1, double u2)
 {
-    const Vector from_std = normalized({from.x * alpha, from.y * alpha, from.z});
+    const Vector from_std = normalized({from.x * alpha_x, from.y * alpha_y, from.z});
     const double phi = 2.0 * pi * u1;
     const double z = (1.0 - u2) * (1.0 + from_std.z) - from_std.z;
     const double sin_theta = std::sqrt(std::max(0.0, 1.0 - z * z));
     const Vector h_std = Vector{sin_theta * std::cos(phi), sin_theta * std::sin(phi), z} + from_std;
-    const Vector h = {h_std.x * alpha, h_std.y * alpha, std::max(h_std.z, 0.0)};
+    const Vector h = {h_std.x * alpha_x, h_std.y * alpha_y, std::max(h_std.z, 0.0)};
     const double length_squared = dot(h, h);
     return length_squared > 0.0 ? h * (1.0 / std::sqrt(length_squared)) : Vector{0.0, 0.0, 1.0};
+}
+
+Vector sample_visible_normal(const Vector& from, double alpha, double u1, double u2)
+{
+    return sample_visible_normal(from, alpha, alpha, u1, u2);
 }
 
 double fresnel_schlick(double f0, double cosine)
 {
     const double m = 1.0 - std::clamp(cosine, 0.0, 1.0);
     return f0 + (1.0 - f0) * m * m * m * m * m;
-}
-
-// Unpolarized dielectric Fresnel, eta = n_transmitted / n_incident; 1 under total internal reflection.
-double fresnel_dielectric(double cosine, double eta)
-{
-    const double c = std::clamp(cosine, 0.0, 1.0);
-    const double sin_t_squared = (1.0 - c * c) / (eta * eta);
-    if (sin_t_squared >= 1.0)
-    {
-        return 1.0;
-    }
-    const double cos_t = std::sqrt(1.0 - sin_t_squared);
-    const double rs = (c - eta * cos_t) / (c + eta * cos_t);
-    const double rp = (eta * c - cos_t) / (eta * c + cos_t);
-    return 0.5 * (rs * rs + rp * rp);
 }
 
 Vector reflect_about(const Vector& from, const Vector& m) { return m * (2.0 * dot(from, m)) - from; }
@@ -101,34 +89,88 @@ void check_mu(double mu)
     }
 }
 
-struct PathResult
+// The Fresnel factors of the accuracy study's kinds.
+class SchlickFresnel final : public MicrosurfaceFresnel
 {
-    double reflected = 0.0;
-    double transmitted = 0.0;
+  public:
+    explicit SchlickFresnel(double f0_value) : f0(f0_value) {}
+    MicrosurfaceColor reflectance(double cos_incident, bool) const override
+    {
+        const double f = fresnel_schlick(f0, cos_incident);
+        return {f, f, f};
+    }
+
+  private:
+    double f0;
 };
 
-// One random walk (Heitz et al. 2016, Algorithm 1 with uniform heights).
-PathResult walk(const MicrosurfaceMaterial& material, const Vector& view, int max_order, Random& random)
+class DielectricFresnel final : public MicrosurfaceFresnel
 {
-    const double alpha = std::max(material.alpha, 1e-4);
-    Vector ray = -view;  // travel direction
-    double c1 = 1.0;     // C1 of the current height: start above the microsurface
-    double energy = 1.0;
-    double eta = material.eta;
-    bool outside = true;
+  public:
+    explicit DielectricFresnel(double eta_value) : eta(eta_value) {}
+    MicrosurfaceColor reflectance(double cos_incident, bool from_above) const override
+    {
+        const double f = microsurface_fresnel_dielectric(cos_incident, from_above ? eta : 1.0 / eta);
+        return {f, f, f};
+    }
+
+  private:
+    double eta;
+};
+
+// The probability of reflecting at an event: F itself when grey (so a grey walk is exactly the
+// single-channel one), the channels' mean otherwise.
+double reflection_probability(const MicrosurfaceColor& f)
+{
+    return f[0] == f[1] && f[1] == f[2] ? f[0] : (f[0] + f[1] + f[2]) / 3.0;
+}
+
+}  // namespace
+
+double microsurface_fresnel_dielectric(double cosine, double eta)
+{
+    const double c = std::clamp(cosine, 0.0, 1.0);
+    const double sin_t_squared = (1.0 - c * c) / (eta * eta);
+    if (sin_t_squared >= 1.0)
+    {
+        return 1.0;
+    }
+    const double cos_t = std::sqrt(1.0 - sin_t_squared);
+    const double rs = (c - eta * cos_t) / (c + eta * cos_t);
+    const double rp = (eta * c - cos_t) / (eta * c + cos_t);
+    return 0.5 * (rs * rs + rp * rp);
+}
+
+MicrosurfaceScattering microsurface_scatter(const MicrosurfaceInterface& interface, const glm::dvec3& travel, int max_order,
+                                            SplitMix64& random)
+{
+    const double alpha_x = std::max(interface.alpha_x, 1e-4);
+    const double alpha_y = std::max(interface.alpha_y, 1e-4);
+    const bool from_above = travel.z < 0.0;
+    // The walk's frame has the light's side up: from below it is the interface turned over.
+    const double flip = from_above ? 1.0 : -1.0;
+    Vector ray = {travel.x * flip, travel.y * flip, travel.z * flip};
+    double c1 = 1.0;  // C1 of the current height: start above the microsurface
+    MicrosurfaceColor energy = {1.0, 1.0, 1.0};
+    double eta = from_above ? interface.eta : 1.0 / interface.eta;
+    bool upper = from_above;  // whether the walk is on the interface's upper side
     const int order_limit = max_order > 0 ? max_order : 1000;
+    MicrosurfaceScattering result;
     for (int order = 0;; ++order)
     {
         // Next height along the ray.
-        const double u = random.next();
+        const double u = random.next_double();
         if (ray.z > 0.0)
         {
-            const double lambda = smith_lambda(ray, alpha);
+            const double lambda = smith_lambda(ray, alpha_x, alpha_y);
             // Escape with probability G1 = C1^Lambda, i.e. when 1 - u <= C1^Lambda.
             if (!(lambda > 0.0) || std::pow(c1, lambda) >= 1.0 - u)
             {
-                PathResult result;
-                (outside ? result.reflected : result.transmitted) = energy;
+                const double side = upper ? 1.0 : -1.0;
+                result.direction = glm::dvec3(ray.x * side, ray.y * side, ray.z * side);
+                result.transmitted = upper != from_above;
+                result.absorbed = false;
+                result.weight = energy;
                 return result;
             }
             c1 = c1 / std::pow(1.0 - u, 1.0 / lambda);
@@ -136,57 +178,113 @@ PathResult walk(const MicrosurfaceMaterial& material, const Vector& view, int ma
         else if (ray.z < 0.0)
         {
             // Downwards Lambda(ray) = -1 - Lambda(-ray): the ray always hits.
-            c1 = c1 * std::pow(1.0 - u, 1.0 / (1.0 + smith_lambda(ray, alpha)));
+            c1 = c1 * std::pow(1.0 - u, 1.0 / (1.0 + smith_lambda(ray, alpha_x, alpha_y)));
         }
         c1 = std::clamp(c1, 1e-300, 1.0);
         if (order >= order_limit)
         {
-            return {};  // a further bounce: outside the kept orders
+            return result;  // a further bounce: outside the kept orders
         }
         // Next direction.
         const Vector from = -ray;
-        const Vector m = sample_visible_normal(from, alpha, random.next(), random.next());
+        const double u1 = random.next_double();
+        const double u2 = random.next_double();
+        const Vector m = sample_visible_normal(from, alpha_x, alpha_y, u1, u2);
         const double cos_i = dot(from, m);
         if (!(cos_i > 0.0))
         {
-            return {};  // measure-zero degenerate normal
+            return result;  // measure-zero degenerate normal
         }
-        switch (material.kind)
+        if (interface.response == MicrosurfaceResponse::reflect)
         {
-        case MicrosurfaceKind::conductor_white: ray = reflect_about(from, m); break;
-        case MicrosurfaceKind::conductor_schlick:
-            energy *= fresnel_schlick(material.f0, cos_i);
-            ray = reflect_about(from, m);
-            break;
-        case MicrosurfaceKind::dielectric_reflect:
-            energy *= fresnel_dielectric(cos_i, eta);
-            ray = reflect_about(from, m);
-            break;
-        case MicrosurfaceKind::dielectric:
-        case MicrosurfaceKind::dielectric_refract:
-        {
-            const double f = fresnel_dielectric(cos_i, eta);
-            const bool reflects = material.kind == MicrosurfaceKind::dielectric ? random.next() < f : f >= 1.0;
-            if (reflects)
+            if (interface.fresnel != nullptr)
             {
-                if (material.kind == MicrosurfaceKind::dielectric_refract)
+                const MicrosurfaceColor f = interface.fresnel->reflectance(cos_i, upper);
+                for (int c = 0; c < 3; ++c)
                 {
-                    return {};  // total internal reflection: E_T0 counts no reflected energy
+                    energy[c] *= f[c];
                 }
-                ray = reflect_about(from, m);
             }
-            else
-            {
-                // Continue on the other side: negate heights and directions, invert eta.
-                ray = -refract_about(from, m, eta);
-                c1 = 1.0 - c1;  // C1(-h) = 1 - C1(h) for uniform heights
-                eta = 1.0 / eta;
-                outside = !outside;
-            }
-            break;
+            ray = reflect_about(from, m);
+            continue;
         }
+        const MicrosurfaceColor f =
+            interface.fresnel != nullptr
+                ? interface.fresnel->reflectance(cos_i, upper)
+                : MicrosurfaceColor{microsurface_fresnel_dielectric(cos_i, eta), microsurface_fresnel_dielectric(cos_i, eta),
+                                    microsurface_fresnel_dielectric(cos_i, eta)};
+        const double p = reflection_probability(f);
+        const bool reflects =
+            interface.response == MicrosurfaceResponse::reflect_or_refract ? random.next_double() < p : p >= 1.0;
+        if (reflects)
+        {
+            if (interface.response == MicrosurfaceResponse::refract)
+            {
+                return result;  // total internal reflection: E_T0 counts no reflected energy
+            }
+            for (int c = 0; c < 3; ++c)
+            {
+                energy[c] = f[c] == p ? energy[c] : energy[c] * f[c] / p;
+            }
+            ray = reflect_about(from, m);
+        }
+        else
+        {
+            if (interface.response == MicrosurfaceResponse::reflect_or_refract)
+            {
+                for (int c = 0; c < 3; ++c)
+                {
+                    energy[c] = f[c] == p ? energy[c] : energy[c] * (1.0 - f[c]) / (1.0 - p);
+                }
+            }
+            // Continue on the other side: negate heights and directions, invert eta.
+            ray = -refract_about(from, m, eta);
+            c1 = 1.0 - c1;  // C1(-h) = 1 - C1(h) for uniform heights
+            eta = 1.0 / eta;
+            upper = !upper;
         }
     }
+}
+
+namespace {
+
+struct PathResult
+{
+    double reflected = 0.0;
+    double transmitted = 0.0;
+};
+
+// One random walk of the accuracy study's kinds, through microsurface_scatter.
+PathResult walk(const MicrosurfaceMaterial& material, const Vector& view, int max_order, SplitMix64& random)
+{
+    MicrosurfaceInterface interface;
+    interface.alpha_x = material.alpha;
+    interface.alpha_y = material.alpha;
+    interface.eta = material.eta;
+    const SchlickFresnel schlick(material.f0);
+    const DielectricFresnel dielectric(material.eta);
+    switch (material.kind)
+    {
+    case MicrosurfaceKind::conductor_white: interface.response = MicrosurfaceResponse::reflect; break;
+    case MicrosurfaceKind::conductor_schlick:
+        interface.response = MicrosurfaceResponse::reflect;
+        interface.fresnel = &schlick;
+        break;
+    case MicrosurfaceKind::dielectric_reflect:
+        interface.response = MicrosurfaceResponse::reflect;
+        interface.fresnel = &dielectric;
+        break;
+    case MicrosurfaceKind::dielectric: interface.response = MicrosurfaceResponse::reflect_or_refract; break;
+    case MicrosurfaceKind::dielectric_refract: interface.response = MicrosurfaceResponse::refract; break;
+    }
+    const MicrosurfaceScattering scattering =
+        microsurface_scatter(interface, glm::dvec3(-view.x, -view.y, -view.z), max_order, random);
+    PathResult result;
+    if (!scattering.absorbed)
+    {
+        (scattering.transmitted ? result.transmitted : result.reflected) = scattering.weight[0];
+    }
+    return result;
 }
 
 }  // namespace
@@ -200,7 +298,7 @@ MicrosurfaceAlbedo microsurface_albedo(const MicrosurfaceMaterial& material, dou
         throw std::invalid_argument("microsurface_albedo: paths must be > 0 and max_order >= 0");
     }
     const Vector view{std::sqrt(std::max(0.0, 1.0 - mu * mu)), 0.0, mu};
-    Random random{SplitMix64{seed * 0x632be59bd9b4e019ull + 0x8cb92ba72f3d8dd7ull}};
+    SplitMix64 random{seed * 0x632be59bd9b4e019ull + 0x8cb92ba72f3d8dd7ull};
     double sum_r = 0.0, sum_r2 = 0.0, sum_t = 0.0, sum_t2 = 0.0;
     for (std::uint64_t path = 0; path < paths; ++path)
     {
@@ -244,7 +342,7 @@ double microsurface_single_scattering_albedo(const MicrosurfaceMaterial& materia
             const double f = material.kind == MicrosurfaceKind::conductor_white ? 1.0
                              : material.kind == MicrosurfaceKind::conductor_schlick
                                  ? fresnel_schlick(material.f0, cos_i)
-                                 : fresnel_dielectric(cos_i, material.eta);
+                                 : microsurface_fresnel_dielectric(cos_i, material.eta);
             // Weight of a visible normal: F G2 / G1(view), G2 = 1 / (1 + Lambda_v + Lambda_l).
             sum += f * (1.0 + lambda_view) / (1.0 + lambda_view + smith_lambda(light, alpha));
         }

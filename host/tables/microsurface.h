@@ -15,15 +15,80 @@
 // The walk restricted to one bounce is the single-scattering BSDF with height-correlated Smith
 // masking-shadowing (Heitz 2014, eq. 99 for reflection), which
 // microsurface_single_scattering_albedo integrates by quadrature; tests/studies checks both.
+// Anisotropic GGX (alpha_x along the tangent x, alpha_y along y) enters through the stretch of
+// the configuration (Heitz 2014, section 5.3): Lambda and the visible normals see the direction
+// scaled by (alpha_x, alpha_y, 1).
+// microsurface_scatter is one walk as a scattering routine with any Fresnel factor (per RGB
+// channel, e.g. F82-tint or a thin film): the single-interface step of the layered reference
+// (host/references/layered_reference.h); microsurface_albedo is its average over walks.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <filesystem>
 #include <map>
 #include <string>
 #include <vector>
 
+#include <glm/vec3.hpp>
+
+#include "host/support/random.h"
+
 namespace openpbr::host {
+
+// ---- One walk on one interface, any Fresnel factor ----
+
+using MicrosurfaceColor = std::array<double, 3>;  // a factor per RGB channel
+
+// How the Fresnel factor F acts at each microfacet event of a walk.
+enum class MicrosurfaceResponse
+{
+    reflect,             // reflect, weight x F (a conductor; F = 1 when no Fresnel is given)
+    reflect_or_refract,  // reflect with probability p = mean of F over the channels (F itself when grey),
+                         // weight x F / p, else refract with weight x (1 - F) / (1 - p)
+    refract,             // refract with weight 1; an event that would reflect totally ends the path
+};
+
+// The reflectance of a microfacet at cos_incident = cos(direction back towards the light, m) in
+// (0, 1], on the interface's upper side (from_above) or lower side.
+class MicrosurfaceFresnel
+{
+  public:
+    virtual ~MicrosurfaceFresnel() = default;
+    virtual MicrosurfaceColor reflectance(double cos_incident, bool from_above) const = 0;
+};
+
+struct MicrosurfaceInterface
+{
+    double alpha_x = 0.25;  // GGX alpha along the tangent x, e.g. 0.25 for roughness 0.5; floored at 1e-4
+    double alpha_y = 0.25;  // GGX alpha along the bitangent y; equal to alpha_x when isotropic
+    double eta = 1.5;       // n_below / n_above: the refraction (read by reflect_or_refract and refract only)
+    MicrosurfaceResponse response = MicrosurfaceResponse::reflect;
+    // nullptr: F = 1 for reflect, the unpolarized dielectric Fresnel of the side's eta otherwise.
+    const MicrosurfaceFresnel* fresnel = nullptr;
+};
+
+struct MicrosurfaceScattering
+{
+    glm::dvec3 direction{0.0, 0.0, 0.0};      // leaving direction, unit, in the interface's frame (z up)
+    bool transmitted = false;                 // left on the side opposite to the one light came from
+    bool absorbed = true;                     // no leaving direction (order limit, degenerate normal, E_T0's reflection)
+    MicrosurfaceColor weight{0.0, 0.0, 0.0};  // energy weight of the leaving light per channel
+};
+
+// One random walk (Heitz et al. 2016, Algorithm 1) for light travelling along `travel` (unit;
+// travel.z < 0 arrives from above, > 0 from below; the walk from below is the walk from above
+// in the frame turned upside down, eta inverted). max_order: scattering events kept (0: all,
+// up to 1000). Uses random.next_double() in a fixed order per event: height, two for the
+// normal, one more for reflect_or_refract.
+MicrosurfaceScattering microsurface_scatter(const MicrosurfaceInterface& interface, const glm::dvec3& travel, int max_order,
+                                            SplitMix64& random);
+
+// Unpolarized reflectance of a smooth dielectric interface, eta = n_transmitted / n_incident; 1
+// under total internal reflection (the walk's default Fresnel factor).
+double microsurface_fresnel_dielectric(double cos_incident, double eta);
+
+// ---- Directional albedos of single interfaces (the accuracy study's ground truth) ----
 
 enum class MicrosurfaceKind
 {

@@ -314,13 +314,13 @@ OPENPBR_FUNC float openpbr_ggx_lobe_dielectric_reflection_albedo(float mu, float
 //    quarters, and one whose interquartile range is at least
 //    OPENPBR_FILM_ESTIMATE_VERY_WIDE_RANGE in c itself (alpha 0.1 below view cos 0.04, 0.2
 //    below about 0.35, 0.4 below about 0.7) OPENPBR_FILM_ESTIMATE_VERY_WIDE_SEGMENTS eighths.
-//    The upper tail (docs/thin-film-estimate.md "The upper tail on its own"): a GGX lobe's long upper tail (at view cos 0.1 and alpha 0.013
-//    the middle three quarters of its light lie between c = 0.089 and 0.110, the last eighth
-//    above 0.120, reaching far up) pulled the upper half's mean to where the film's change bends, the largest remaining
-//    errors of the dense reference without a critical cosine (0.034 high, 0.020 low); the last eighth as a segment of its
-//    own, evaluated at its median, cut them to 0.0087 / 0.0085. Every cut and every segment's quartiles are even nodes, so
-//    the shares, means and spreads are node reads (the cut at the lobe's mean before took a search and the cell model: the
-//    tail's evaluation is paid by what that saved). A narrow lobe there, whose interquartile range of c is below
+//    The upper tail (docs/thin-film-estimate.md "The upper tail on its own"): a GGX lobe's long upper tail (at view cos 0.1
+//    and alpha 0.013 the middle three quarters of its light lie between c = 0.089 and 0.110, the last eighth above 0.120,
+//    reaching far up) pulled the upper half's mean to where the film's change bends, the largest remaining errors of the
+//    dense reference without a critical cosine (0.034 high, 0.020 low); the last eighth as a segment of its own, evaluated
+//    at its median, cut them to 0.0087 / 0.0085. Every cut and every segment's quartiles are even nodes, so the shares,
+//    means and spreads are node reads (the cut at the lobe's mean before took a search and the cell model: the tail's
+//    evaluation is paid by what that saved). A narrow lobe there, whose interquartile range of c is below
 //    OPENPBR_FILM_ESTIMATE_NARROW_WIDTH times its median, is one segment evaluated at its median (one film evaluation
 //    instead of two, as the mirror limit's one at the view): the film's amplitudes and the plain Fresnel factor change on
 //    the scale of c itself (their derivatives grow like 1 / c towards grazing), so a lobe narrow against its median cosine

@@ -3,6 +3,7 @@
 #define OPENPBR_MATH_H
 
 #include "../../interop/openpbr_interop.h"
+#include "../openpbr_working_space.h"
 
 #define OPENPBR_PI 3.14159265358979323846f
 #define OPENPBR_TWO_PI 6.28318530717958647692f
@@ -174,9 +175,10 @@ OPENPBR_FUNC vec4 openpbr_with_channel(vec4 v, int channel, float value)
                 channel == 3 ? value : v.w);
 }
 
-// Luminance with Rec.709 / linear sRGB primaries; used only for sampling decisions, never
-// for values, so the exact primaries do not affect the result's expectation.
-OPENPBR_FUNC float openpbr_luminance(vec3 c) { return dot(c, vec3(0.2126f, 0.7152f, 0.0722f)); }
+// Relative luminance Y of a working-space colour (slang/openpbr_working_space.h: the Y row of
+// its RGB -> XYZ matrix, white (1, 1, 1) -> 1); used only for sampling decisions, never for
+// values, so the weights do not affect the result's expectation.
+OPENPBR_FUNC float openpbr_luminance(vec3 c) { return dot(c, OPENPBR_WORKING_SPACE_LUMINANCE_WEIGHTS); }
 
 OPENPBR_NAMESPACE_END
 

@@ -7,10 +7,10 @@
 // n_b) or a conductor (complex N = n + i k per RGB channel). cos_theta is the cosine between the
 // incident direction and the microfacet normal, on the outside. All functions return the
 // reflectance of the whole stack averaged over the s and p polarizations, per RGB channel, in
-// [0, 1]. Linear RGB has Rec.709 / sRGB primaries, and a spectrally flat reflectance R maps to
-// RGB (R, R, R) (see "Spectral lobes" below), so a zero-thickness film gives exactly the plain
-// Fresnel factor of the base. The film does not absorb, so for a dielectric base the
-// transmittance of the stack is 1 minus the returned reflectance.
+// [0, 1]. Linear RGB is the working space (slang/openpbr_working_space.h), and a spectrally
+// flat reflectance R maps to RGB (R, R, R) (see "Spectral lobes" below), so a zero-thickness
+// film gives exactly the plain Fresnel factor of the base. The film does not absorb, so for a
+// dielectric base the transmittance of the stack is 1 minus the returned reflectance.
 //
 // Phase convention: the fields vary as e^{i(k z - w t)}, so an absorbing medium has index
 // n + i k with k >= 0 and a round trip through the film multiplies the amplitude by
@@ -99,43 +99,28 @@
 #define OPENPBR_THIN_FILM_MAX_EXTINCTION 1000.0f
 #define OPENPBR_THIN_FILM_MAX_THICKNESS_UM 100000.0f
 
-// Spectral lobes. Fit (least squares over wavenumbers 1/0.78 .. 1/0.38 um^-1, weights
-// constrained to sum to 1 per channel, a 1e-4 ridge term against cancelling lobe pairs) of the
-// Rec.709 linear RGB sensitivities as densities over the wavenumber nu in um^-1:
+// Spectral lobes. Each RGB sensitivity of the working space (slang/openpbr_working_space.h),
+// as a density over the wavenumber nu in um^-1, is a sum of six Gaussian lobes shared by every
+// space:
 //   s_c(nu) = sum_j W_cj N(nu; nu_j, sigma_j^2),   sum_j W_cj = 1,
 // where s_c = (M XYZ-CMF)_c / integral, with the CIE 1931 2-degree colour matching functions
 // from the multi-lobe analytic fit of Wyman, Sloan & Shirley 2013, "Simple Analytic
 // Approximations to the CIE XYZ Color Matching Functions" (JCGT 2(2)), restricted to
-// 380..780 nm, and M the XYZ -> linear RGB matrix built from the Rec.709 primaries and the D65
-// white point (row 0: 3.24097 -1.53738 -0.49861). Each channel is then normalized so that a
-// spectrally flat reflectance 1 gives 1 (equal-energy white maps to RGB (1, 1, 1), not D65).
-// The L1 error of the fit is 0.025, 0.012 and 0.015 (R, G, B) of the unit-area sensitivities.
-// Belcour & Barla fit Gaussians to the XYZ functions and convert afterwards; fitting the RGB
-// sensitivities directly puts the fit error where it is seen, and makes every channel's
-// weights sum to 1 so a flat reflectance stays exactly flat.
-#define OPENPBR_THIN_FILM_LOBE0_NU 1.6299326f
-#define OPENPBR_THIN_FILM_LOBE0_SIGMA 0.0654941f
-#define OPENPBR_THIN_FILM_LOBE0_WEIGHT vec3(0.8127163f, -0.2804833f, 0.0145507f)
-#define OPENPBR_THIN_FILM_LOBE1_NU 1.7149580f
-#define OPENPBR_THIN_FILM_LOBE1_SIGMA 0.0951775f
-#define OPENPBR_THIN_FILM_LOBE1_WEIGHT vec3(0.7844619f, 0.4590758f, -0.0785729f)
-#define OPENPBR_THIN_FILM_LOBE2_NU 1.8647213f
-#define OPENPBR_THIN_FILM_LOBE2_SIGMA 0.0922642f
-#define OPENPBR_THIN_FILM_LOBE2_WEIGHT vec3(-0.5638469f, 0.8538419f, -0.1032477f)
-#define OPENPBR_THIN_FILM_LOBE3_NU 2.0936911f
-#define OPENPBR_THIN_FILM_LOBE3_SIGMA 0.1170459f
-#define OPENPBR_THIN_FILM_LOBE3_WEIGHT vec3(-0.1749820f, 0.1194973f, 0.2119986f)
-#define OPENPBR_THIN_FILM_LOBE4_NU 2.2295382f
-#define OPENPBR_THIN_FILM_LOBE4_SIGMA 0.0473544f
-#define OPENPBR_THIN_FILM_LOBE4_WEIGHT vec3(-0.0035974f, 0.0101753f, -0.1512627f)
-#define OPENPBR_THIN_FILM_LOBE5_NU 2.2315741f
-#define OPENPBR_THIN_FILM_LOBE5_SIGMA 0.0916354f
-#define OPENPBR_THIN_FILM_LOBE5_WEIGHT vec3(0.1452482f, -0.1621070f, 1.1065341f)
-
-// Fast model: one Gaussian per channel (least-squares fit of the same sensitivities); the
-// centres are 607.7, 541.4 and 450.9 nm.
-#define OPENPBR_THIN_FILM_FAST_NU vec3(1.645561f, 1.846948f, 2.217998f)
-#define OPENPBR_THIN_FILM_FAST_SIGMA vec3(0.071469f, 0.099373f, 0.108442f)
+// 380..780 nm, and M the XYZ -> linear RGB matrix of the working space's primaries and white
+// point. Each channel is normalized so that a spectrally flat reflectance 1 gives 1
+// (equal-energy white maps to RGB (1, 1, 1)). The lobes (nu_j, sigma_j) were fit once with the
+// Rec.709 weights; the sensitivities of another RGB space are a linear transform of those, so
+// the same lobes serve it, with weights refit per space (least squares over wavenumbers
+// 1/0.78 .. 1/0.38 um^-1, the weights constrained to sum to 1 per channel, a 1e-4 ridge term
+// against cancelling lobe pairs). L1 error of the fit: 0.025, 0.012, 0.015 (R, G, B) of the
+// unit-area Rec.709 sensitivities, 0.017, 0.010, 0.013 for ACEScg. Belcour & Barla fit
+// Gaussians to the XYZ functions and convert afterwards; fitting the RGB sensitivities directly
+// puts the fit error where it is seen, and makes every channel's weights sum to 1 so a flat
+// reflectance stays exactly flat. The fast model's one Gaussian per channel is a least-squares
+// fit of the same sensitivities (amplitude free; the model uses it at unit area).
+// OPENPBR_THIN_FILM_LOBE<j>_NU, _SIGMA, _WEIGHT and OPENPBR_THIN_FILM_FAST_NU, _SIGMA are
+// generated for each working space by tools/make_colour_tables.py into
+// slang/generated/openpbr_working_space_constants.h (included through openpbr_math.h).
 
 OPENPBR_NAMESPACE_BEGIN
 

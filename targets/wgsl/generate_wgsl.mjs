@@ -133,7 +133,7 @@ function toggleNote(library) {
 
 function header(options, library) {
   const specialized = options.defines.length > 0 ? options.defines.join(' ') : 'none';
-  return `// openpbr.wgsl: the OpenPBR 1.1 surface BSDF for WebGPU (WGSL), one self-contained file generated
+  return `// openpbr.wgsl: the OpenPBR 1.1.1 surface BSDF for WebGPU (WGSL), one self-contained file generated
 // from the single-source headers by targets/wgsl/generate_wgsl.mjs (Slang's WGSL target). Do not
 // edit: regenerate. Defines it was generated with: ${specialized}.
 //

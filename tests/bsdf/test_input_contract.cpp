@@ -87,7 +87,7 @@ const std::vector<FieldRange>& fields()
         {"thin_film_thickness", &Inputs::thin_film_thickness, nullptr, 0.0f, length_max},
         {"thin_film_ior", &Inputs::thin_film_ior, nullptr, ior_low, 3.0f},
         {"emission_luminance", &Inputs::emission_luminance, nullptr, 0.0f, 1e18f},
-        {"emission_color", nullptr, &Inputs::emission_color, 0.0f, 1.0f},
+        {"emission_color", nullptr, &Inputs::emission_color, 0.0f, 1e18f},  // spec 1.1.1: [0, inf)^3 (HDR)
         {"geometry_opacity", &Inputs::geometry_opacity, nullptr, 0.0f, 1.0f},
     };
     return table;

@@ -2,9 +2,11 @@
 // The reference is computed here independently, in double precision: the textbook Airy
 // reflectance of the three-media stack with complex Fresnel coefficients, sampled every 1 nm
 // from 380 to 780 nm and integrated against the CIE 1931 colour matching functions (the
-// multi-lobe analytic fit of Wyman, Sloan & Shirley 2013, JCGT 2(2)), then converted to linear
-// Rec.709 RGB with a matrix built here from the primaries and the D65 white, each channel
-// normalized so a flat spectrum of 1 gives 1.
+// multi-lobe analytic fit of Wyman, Sloan & Shirley 2013, JCGT 2(2)), then converted to the
+// working space's linear RGB (slang/openpbr_working_space.h: Rec.709 with D65, or ACES AP1 with
+// the ACES white) with a matrix built here from the primaries and the white, each channel
+// normalized so a flat spectrum of 1 gives 1. The same tests run in each working space
+// (test_thin_film and test_bsdf_lin_rec709, tests/bsdf/CMakeLists.txt).
 #include <glm/glm.hpp>  // first: the OpenPBR headers require it (interop/openpbr_interop_cpp.h)
 #include "slang/math/openpbr_thin_film.h"
 #include "slang/math/openpbr_fresnel.h"
@@ -63,11 +65,17 @@ Matrix3 inverse(const Matrix3& m)
     return r;
 }
 
-// XYZ -> linear RGB for the Rec.709 primaries and the D65 white point (chromaticities).
-Matrix3 xyz_to_rec709()
+// XYZ -> linear RGB of the working space from its primaries and white point (chromaticities):
+// Rec.709 and D65 (ITU-R BT.709), or ACES AP1 and the ACES white (ACEScg, S-2014-004).
+Matrix3 xyz_to_working_space()
 {
+#if OPENPBR_WORKING_SPACE == OPENPBR_WORKING_SPACE_ACESCG
+    const double primaries[3][2] = {{0.713, 0.293}, {0.165, 0.830}, {0.128, 0.044}};
+    const double white[2] = {0.32168, 0.33767};
+#else
     const double primaries[3][2] = {{0.64, 0.33}, {0.30, 0.60}, {0.15, 0.06}};
     const double white[2] = {0.3127, 0.3290};
+#endif
     Matrix3 p{};  // columns: XYZ of each primary with Y = 1
     for (int c = 0; c < 3; ++c)
     {
@@ -104,7 +112,7 @@ const Sensitivities& sensitivities()
 {
     static const Sensitivities table = [] {
         Sensitivities s;
-        const Matrix3 m = xyz_to_rec709();
+        const Matrix3 m = xyz_to_working_space();
         Rgb total{0.0, 0.0, 0.0};
         for (int lambda = 380; lambda <= 780; ++lambda)
         {

@@ -1,6 +1,7 @@
 // Tests for host/material_library: the specification's defaults, the bundled example materials
 // and the loader's errors. Needs OPENPBR_MATERIALS_DIR (a string literal: the materials folder).
 #include "host/scene/material_library.h"
+#include "host/scene/colour_spaces.h"
 
 #include <gtest/gtest.h>
 
@@ -26,7 +27,7 @@ using openpbr::host::MaterialError;
 std::vector<float> as_list(const float value) { return {value}; }
 std::vector<float> as_list(const glm::vec3& value) { return {value.x, value.y, value.z}; }
 
-// An independent second table of every OpenPBR 1.1 input, written out by hand here rather
+// An independent second table of every OpenPBR 1.1.1 input, written out by hand here rather
 // than taken from the library, so a wrong entry in the library's table shows up as a mismatch.
 struct InputCase
 {
@@ -228,17 +229,22 @@ class MaterialFileTest : public ::testing::Test
     }
 
     // A document shaped like the bundled materials: one surfacematerial named "Test" that
-    // references one open_pbr_surface holding `inputs`.
-    std::string write_surface(const std::string& file_name, const std::string& inputs) const
+    // references one open_pbr_surface holding `inputs`. Its colour space is acescg, the
+    // working space: its colours load unchanged.
+    std::string write_surface(const std::string& file_name, const std::string& inputs,
+                              const std::string& materialx_attributes = " colorspace=\"acescg\"",
+                              const std::string& surface_attributes = "") const
     {
         return write_file(file_name,
                           "<?xml version=\"1.0\"?>\n"
-                          "<materialx version=\"1.39\" colorspace=\"acescg\">\n"
-                          "  <surfacematerial name=\"Test\" type=\"material\">\n"
-                          "    <input name=\"surfaceshader\" type=\"surfaceshader\" nodename=\"test_surface\" />\n"
-                          "  </surfacematerial>\n"
-                          "  <open_pbr_surface name=\"test_surface\" type=\"surfaceshader\">\n" +
-                              inputs +
+                          "<materialx version=\"1.39\"" +
+                              materialx_attributes +
+                              ">\n"
+                              "  <surfacematerial name=\"Test\" type=\"material\">\n"
+                              "    <input name=\"surfaceshader\" type=\"surfaceshader\" nodename=\"test_surface\" />\n"
+                              "  </surfacematerial>\n"
+                              "  <open_pbr_surface name=\"test_surface\" type=\"surfaceshader\"" +
+                              surface_attributes + ">\n" + inputs +
                               "  </open_pbr_surface>\n"
                               "</materialx>\n");
     }
@@ -623,13 +629,74 @@ TEST_F(MaterialFileTest, ConnectedInputIsNotSupported)
     EXPECT_CONTAINS(graph, "not supported");
 }
 
-TEST_F(MaterialFileTest, PerInputColorspaceIsNotSupported)
+// An input's colorspace overrides the document's; color3 values are converted into the
+// working space (host/scene/colour_spaces.h), floats and vectors are not.
+TEST_F(MaterialFileTest, ColoursAreConvertedFromTheirSpace)
 {
-    const std::string message = load_error_message(write_surface(
-        "srgb.mtlx", "    <input name=\"base_color\" type=\"color3\" value=\"1, 0, 0\" colorspace=\"srgb_texture\" />\n"));
-    EXPECT_CONTAINS(message, "srgb.mtlx");
-    EXPECT_CONTAINS(message, "'base_color'");
-    EXPECT_CONTAINS(message, "srgb_texture");
+    const std::vector<Material> materials = openpbr::host::load_materialx_file(write_surface(
+        "spaces.mtlx",
+        "    <input name=\"base_color\" type=\"color3\" value=\"1, 0.5, 0\" colorspace=\"srgb_texture\" />\n"
+        "    <input name=\"coat_color\" type=\"color3\" value=\"0.9, 0.5, 0.25\" />\n"
+        "    <input name=\"specular_color\" type=\"color3\" value=\"0.9, 0.5, 0.25\" colorspace=\"acescg\" />\n"
+        "    <input name=\"geometry_normal\" type=\"vector3\" value=\"0, 0.6, 0.8\" />\n"
+        "    <input name=\"coat_roughness\" type=\"float\" value=\"0.5\" colorspace=\"srgb_texture\" />\n",
+        " colorspace=\"lin_rec709\""));
+    const openpbr::OpenPBR_ResolvedInputs& inputs = materials[0].inputs;
+    EXPECT_EQ(materials[0].colorspace, "lin_rec709");
+    EXPECT_EQ(inputs.base_color, *openpbr::host::colour_to_working_space("srgb_texture", glm::vec3(1.0f, 0.5f, 0.0f)));
+    EXPECT_EQ(inputs.coat_color, openpbr::host::rec709_to_working_space(glm::vec3(0.9f, 0.5f, 0.25f)));
+    EXPECT_NE(inputs.coat_color, glm::vec3(0.9f, 0.5f, 0.25f));  // Rec.709 differs from the working space
+    EXPECT_EQ(inputs.specular_color, glm::vec3(0.9f, 0.5f, 0.25f));
+    EXPECT_EQ(inputs.geometry_basis.normal, glm::vec3(0.0f, 0.6f, 0.8f));
+    EXPECT_EQ(inputs.coat_roughness, 0.5f);
+}
+
+// The specification's default when a document names no colour space: ACEScg ("Metadata").
+TEST_F(MaterialFileTest, DocumentWithoutColorspaceIsAcescg)
+{
+    const std::vector<Material> materials = openpbr::host::load_materialx_file(
+        write_surface("plain.mtlx", "    <input name=\"base_color\" type=\"color3\" value=\"0.9, 0.5, 0.25\" />\n", ""));
+    EXPECT_EQ(materials[0].colorspace, "acescg");
+    EXPECT_EQ(materials[0].inputs.base_color,
+              *openpbr::host::colour_to_working_space("acescg", glm::vec3(0.9f, 0.5f, 0.25f)));
+}
+
+TEST_F(MaterialFileTest, UnknownColorspaceIsAnErrorNamingIt)
+{
+    const std::string document = load_error_message(write_surface(
+        "document.mtlx", "    <input name=\"base_color\" type=\"color3\" value=\"1, 0, 0\" />\n", " colorspace=\"sRGB\""));
+    EXPECT_CONTAINS(document, "document.mtlx:2:");
+    EXPECT_CONTAINS(document, "unknown colorspace 'sRGB'");
+    EXPECT_CONTAINS(document, "srgb_texture");  // the known names are listed
+    const std::string input = load_error_message(write_surface(
+        "input.mtlx", "    <input name=\"base_color\" type=\"color3\" value=\"1, 0, 0\" colorspace=\"lin_ap0\" />\n"));
+    EXPECT_CONTAINS(input, "input.mtlx:7:");
+    EXPECT_CONTAINS(input, "'base_color'");
+    EXPECT_CONTAINS(input, "unknown colorspace 'lin_ap0'");
+}
+
+// A 1.1.1 document (the node definition's version named, geometry_thin_walled uniform) loads;
+// so does one naming 1.1; any other version is refused.
+TEST_F(MaterialFileTest, ReadsOpenPbr11And111Documents)
+{
+    for (const std::string version : {"1.1", "1.1.1"})
+    {
+        const std::vector<Material> materials = openpbr::host::load_materialx_file(write_surface(
+            "v" + version + ".mtlx",
+            "    <input name=\"geometry_thin_walled\" type=\"boolean\" value=\"true\" uniform=\"true\" />\n"
+            "    <input name=\"emission_color\" type=\"color3\" value=\"4, 2, 1\" />\n",
+            " colorspace=\"acescg\"", " version=\"" + version + "\" nodedef=\"ND_open_pbr_surface_surfaceshader\""));
+        EXPECT_TRUE(materials[0].inputs.geometry_thin_walled) << version;
+        // emission_color is HDR in 1.1.1 ([0, inf)^3): kept as written.
+        EXPECT_EQ(materials[0].inputs.emission_color, glm::vec3(4.0f, 2.0f, 1.0f)) << version;
+    }
+    for (const std::string version : {"1.0", "1.2", "2"})
+    {
+        const std::string message =
+            load_error_message(write_surface("other.mtlx", "", " colorspace=\"acescg\"", " version=\"" + version + "\""));
+        EXPECT_CONTAINS(message, "other.mtlx:6:");
+        EXPECT_CONTAINS(message, "version '" + version + "' is not supported");
+    }
 }
 
 TEST_F(MaterialFileTest, MissingNode)

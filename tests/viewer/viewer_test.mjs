@@ -5,7 +5,12 @@
 // accumulation back and compares it with `openpbr render` on the CPU (same scene, camera, seed
 // and spp: --materials FILE --cell SIZE). Then a material whose base colour is 5 % off must
 // fail the same comparison, and a broken .mtlx must show a visible error while the page keeps
-// working. Exit status 0 when every check passes; 1 with the failed checks listed.
+// working. While the coated metal's kernel compiles (its request held until then), the caption
+// must say so with a running count of seconds, in a screenshot (WORK/viewer_compiling.png); a
+// busy server (503, answered here) must be shown and asked again; a compile that fails (the
+// server's 500, answered here) must show its message in the red box
+// (WORK/viewer_compile_failed.png). Exit status 0 when every check passes; 1 with the failed
+// checks listed.
 // Usage: node tests/viewer/viewer_test.mjs --openpbr BUILD/openpbr --work DIR
 //   [--chromium /usr/bin/chromium] [--screenshot FILE.png]
 import { spawnSync } from 'node:child_process';
@@ -32,7 +37,7 @@ const SPP = 16;
 const SIGMAS = 4;
 const MATERIALS = [
   { file: 'plain_dielectric.mtlx', features: 'base' },
-  { file: 'coated_metal.mtlx', features: 'coat+metal' },
+  { file: 'coated_metal.mtlx', features: 'coat+metal', showCompile: true },
   { file: 'rough_glass.mtlx', features: 'transmission' },
 ];
 function parseArgs(argv) {
@@ -99,13 +104,120 @@ function describe(result) {
 
 const within = (result) => result.channels.every((c) => c.sigmas <= SIGMAS) && result.rmse < result.noise;
 
+// Intercepts the page's render-kernel requests until end(): next() resolves to the next one
+// (held: the caller continues it to the server or answers it), other requests go on.
+async function interceptKernelRequests(page) {
+  await page.setRequestInterception(true);
+  const held = [];
+  let wake = () => {};
+  const onRequest = (intercepted) => {
+    if (intercepted.isInterceptResolutionHandled()) return;
+    if (!intercepted.url().includes('/api/kernel/render.wgsl')) {
+      intercepted.continue();
+      return;
+    }
+    held.push(intercepted);
+    wake();
+  };
+  page.on('request', onRequest);
+  return {
+    // The page asks within a second or two (the analysis runs first); a kernel it already has
+    // would never be asked for: an error, not a hang.
+    next: () => new Promise((resolve, reject) => {
+      const timer = setTimeout(() => reject(new Error('the page asked for no render kernel within 120 s')), 120000);
+      wake = () => {
+        if (held.length === 0) return;
+        clearTimeout(timer);
+        wake = () => {};
+        resolve(held.shift());
+      };
+      wake();
+    }),
+    end: async () => {
+      page.off('request', onRequest);
+      await page.setRequestInterception(false);
+    },
+  };
+}
+
+// Answers a held request here with a status, headers and a text body.
+const answer = (request, status, body, headers = {}) => request.respond({ status, headers, contentType: 'text/plain; charset=utf-8', body });
+
+// The captions the page shows, in order, from here on (window.captionLog).
+async function recordCaptions(page) {
+  await page.evaluate(() => {
+    const status = document.getElementById('status');
+    window.captionLog = [status.textContent];
+    window.captionObserver ??= new MutationObserver(() => window.captionLog.push(status.textContent));
+    window.captionObserver.observe(status, { childList: true, characterData: true, subtree: true });
+  });
+}
+
+// With the kernel request of `features` held: the caption counts the compile's seconds (waits
+// for 1 s or more), and the screenshot shows it; then the request goes on, and the captions
+// must have named the compile, the pipeline build and the result, in that order.
+async function showCompile(page, features, screenshot) {
+  const pattern = `compiling kernel \\{${features.replace('+', '\\+')}\\}… `;
+  await page.waitForFunction((p) => new RegExp(`${p}[1-9]\\d* s$`).test(document.getElementById('status').textContent),
+    { timeout: 60000, polling: 100 }, pattern);
+  const caption = await page.$eval('#status', (status) => status.textContent);
+  await page.screenshot({ path: screenshot });
+  check(new RegExp(`^\\S+: ${pattern}[1-9]\\d* s$`).test(caption), `while the kernel compiles, the caption says so and counts ('${caption}', ${screenshot})`);
+}
+
+function checkCaptions(captions, features) {
+  const label = `{${features}}`;
+  const compiling = captions.findIndex((c) => c.includes(`compiling kernel ${label}… 0 s`));
+  const building = captions.findIndex((c) => c.includes(`building the pipelines of kernel ${label}… 0 s`));
+  const result = captions.findIndex((c) => / kernel \{[^}]*\} \(WGSL \d+\.\d s, pipelines \d+\.\d s\)$/.test(c) && c.includes(label));
+  check(compiling >= 0 && compiling < building && building < result,
+    `the captions name the compile, the pipeline build and the result in turn (${[compiling, building, result].map((i) => `'${captions[i]}'`).join(', ')})`);
+}
+
 // Loads a .mtlx text through the page (the drop path), waits for SPP samples, reads the mean.
-async function renderInPage(page, text, name) {
+// `screenshot`: the kernel's compile is held, shown and checked first (showCompile).
+async function renderInPage(page, text, name, features = null, screenshot = null) {
+  const kernels = screenshot ? await interceptKernelRequests(page) : null;
+  if (kernels) await recordCaptions(page);
   const generation = await page.evaluate((t, n) => window.openpbrViewer.loadMaterialText(t, n), text, name);
   if (generation === false) throw new Error(`the page refused ${name}: ${(await page.evaluate(() => window.openpbrViewer.state())).error}`);
+  if (kernels) {
+    const request = await kernels.next();
+    await showCompile(page, features, screenshot).finally(async () => {
+      await request.continue();
+      await kernels.end();
+    });
+  }
   const state = await waitForSamples(page, SPP, generation);
   if (state.error) throw new Error(`page error while rendering ${name}: ${state.error}`);
+  if (kernels) checkCaptions(await page.evaluate(() => window.captionLog), features);
   return { state, image: await page.evaluate(() => window.openpbrViewer.readMean()) };
+}
+
+// A compile that fails: the plain dielectric with fuzz (a feature set not built yet), its kernel
+// request answered 500 with a compiler's message, as the server answers a failed compile.
+async function checkFailedCompile(page, screenshot) {
+  const text = fs.readFileSync(path.join(DATA, 'plain_dielectric.mtlx'), 'utf8')
+    .replace('<input name="specular_roughness"', '<input name="fuzz_weight" type="float" value="0.5" />\n    <input name="specular_roughness"');
+  const message = 'compiling the render kernel {fuzz} failed (slangc.mjs targets/kernels/render_steps.slang):\nrender_steps.slang(1): error 30015: a message from the browser test';
+  const kernels = await interceptKernelRequests(page);
+  await recordCaptions(page);
+  const generation = await page.evaluate((t) => window.openpbrViewer.loadMaterialText(t, 'fuzz_compile_fails.mtlx'), text);
+  // First the server is busy (503, Retry-After 1 s): the page must say so and ask again.
+  await answer(await kernels.next(), 503, 'the compile queue is full; retry in 1 s\n', { 'retry-after': '1' });
+  const retried = await kernels.next();
+  const busy = (await page.evaluate(() => window.captionLog)).find((c) => c.includes("the server's compile queue is full"));
+  check(/: the server's compile queue is full; asking again for kernel \{fuzz\} in 1 s… \d+ s$/.test(busy ?? ''),
+    `a busy server (503) is shown in the caption ('${busy}') and asked again`);
+  await answer(retried, 500, `500 Internal Server Error: ${message}\n`);
+  await kernels.end();
+  const state = await waitForSamples(page, 1, generation);
+  const box = await page.$eval('#error', (element) => !element.hidden && element.textContent);
+  check(typeof box === 'string' && box.includes(message) && state.error.includes(message),
+    `a failed compile shows the compiler's message in the red box ('${String(box).replace(/\n/g, ' | ')}')`);
+  check(state.features === 'fuzz' && state.status === `${state.name}: kernel {fuzz} failed; the message is above the image`,
+    `the caption names the kernel that failed ('${state.status}', ${screenshot})`);
+  await page.screenshot({ path: screenshot });
 }
 
 async function main() {
@@ -126,7 +238,8 @@ async function main() {
     for (const material of MATERIALS) {
       const file = path.join(DATA, material.file);
       const cpu = cpuReference(options, file);
-      const { state, image } = await renderInPage(page, fs.readFileSync(file, 'utf8'), material.file);
+      const screenshot = material.showCompile ? path.join(options.work, 'viewer_compiling.png') : null;
+      const { state, image } = await renderInPage(page, fs.readFileSync(file, 'utf8'), material.file, material.features, screenshot);
       check(state.features === material.features, `${material.file}: kernel specialized to {${state.features}} (expected {${material.features}})`);
       check(image.samples === SPP && image.size === cpu.width, `${material.file}: ${image.samples} spp at ${image.size}px`);
       const result = compare(image, cpu);
@@ -171,6 +284,8 @@ async function main() {
     // A new generation starts its sample count from 0 (main.mjs restart).
     check(after.generation === before.generation + 1 && after.error === '' && after.samples >= 2,
       `editing specular_roughness restarts the accumulation (generation ${before.generation} -> ${after.generation}, now ${after.samples} spp)`);
+
+    await checkFailedCompile(page, path.join(options.work, 'viewer_compile_failed.png'));
 
     const broken = await page.evaluate(() => window.openpbrViewer.loadMaterialText('<materialx><open_pbr_surface name="x"', 'broken.mtlx'));
     const errorShown = await page.$eval('#error', (box) => !box.hidden && box.textContent);

@@ -39,6 +39,37 @@ function setStatus(text) {
   $('status').textContent = text;
 }
 
+// The caption under the image says what the page is doing. Work under way counts its seconds,
+// e.g. "open_pbr_carpaint: compiling kernel {coat}… 12 s"; a result stops the count.
+const caption = {
+  timer: null,
+  work(text) {
+    const since = performance.now();
+    const show = () => {
+      const counted = `${text}… ${Math.floor((performance.now() - since) / 1000)} s`;
+      if ($('status').textContent !== counted) setStatus(counted);
+    };
+    this.done(null);
+    show();
+    this.timer = setInterval(show, 250);
+  },
+  done(text) {
+    clearInterval(this.timer);
+    this.timer = null;
+    if (text !== null) setStatus(text);
+  },
+};
+
+// The caption for a kernel's phases (Renderer's onPhase): `subject` names the kernel, e.g.
+// "kernel {coat}" or "the material analysis kernel"; `prefix` the material, e.g. "carpaint: ".
+function phaseCaption(prefix, subject) {
+  return (phase, seconds) => {
+    if (phase === 'compile') caption.work(`${prefix}compiling ${subject}`);
+    else if (phase === 'wait') caption.work(`${prefix}the server's compile queue is full; asking again for ${subject} in ${seconds} s`);
+    else caption.work(`${prefix}building the pipelines of ${subject}`);
+  };
+}
+
 async function text(url) {
   const response = await fetch(url);
   if (!response.ok) throw new Error(`${url}: ${response.status} ${await response.text()}`);
@@ -66,20 +97,23 @@ async function restart() {
   const packed = new Float32Array(2 * floats);
   packed.set(packMaterial(state.table, state.values, floats), 0);
   packed.set(packMaterial(state.table, groundValues(defaultValues(state.table)), floats), floats);
+  let step = 'the material analysis';
   const run = (async () => {
     try {
+      caption.work(`${state.name}: analysing the material`);
       const analysis = await renderer.analyze(packed, 2);
       // The smallest feature set that renders the sphere and the ground exactly (scene_feature_mask).
       const mask = analysis.materials[0].mask | analysis.materials[1].mask;
       stats.mask = mask;
       stats.features = featureLabel(mask);
-      setStatus(`${state.name}: building the render kernel for {${stats.features}}…`);
-      const pipelines = await renderer.pipelinesFor(mask);
+      step = `kernel {${stats.features}}`;
+      const pipelines = await renderer.pipelinesFor(mask, stats.features, phaseCaption(`${state.name}: `, step));
       stats.kernel = { compileSeconds: pipelines.compileSeconds, buildSeconds: pipelines.buildSeconds };
       if (generation !== state.generation) return;
       const parameters = makeParameters(state.kernel, settings.size, settings);
       renderer.setScene(settings.size, parameters, makeScene(state.kernel, analysis.materials[0].record, analysis.wavelengths), packed);
-      setStatus(`${state.name}: kernel {${stats.features}} (WGSL ${pipelines.compileSeconds.toFixed(1)} s, pipelines ${pipelines.buildSeconds.toFixed(1)} s)`);
+      step = `rendering with kernel {${stats.features}}`;
+      caption.done(`${state.name}: kernel {${stats.features}} (WGSL ${pipelines.compileSeconds.toFixed(1)} s, pipelines ${pipelines.buildSeconds.toFixed(1)} s)`);
       const firstBatch = settings.maxDepth + 2;
       while (generation === state.generation && stats.samples < settings.sampleLimit) {
         await renderer.renderSample(pipelines, stats.samples, firstBatch, 8);
@@ -91,6 +125,7 @@ async function restart() {
         $('samples').textContent = `${stats.samples} spp`;
       }
     } catch (error) {
+      caption.done(`${state.name}: ${step} failed; the message is above the image`);
       showError(error.message);
     }
   })();
@@ -130,7 +165,13 @@ function loadMaterialText(source, file) {
 }
 
 async function loadBundled(file) {
-  const materials = parseMaterialX(await text(`/materials/${file}`), file, state.table);
+  let materials;
+  try {
+    materials = parseMaterialX(await text(`/materials/${file}`), file, state.table);
+  } catch (error) {
+    caption.done(`${file} could not be loaded; the message is above the image`);
+    throw error;
+  }
   return applyMaterial(materials[0]);
 }
 
@@ -168,8 +209,8 @@ async function main() {
   const format = navigator.gpu.getPreferredCanvasFormat();
   context.configure({ device, format, alphaMode: 'opaque' });
   state.renderer = new Renderer(device, context, format, state.kernel, state.packedFloats);
-  setStatus('building the material analysis kernel…');
-  await state.renderer.init(displayCode);
+  await state.renderer.init(displayCode, phaseCaption('', 'the material analysis kernel'));
+  caption.work('loading the material');
 
   state.setControls = buildControls($('controls'), state.table, (name, value) => {
     state.values[name] = value;
@@ -201,7 +242,7 @@ async function main() {
 
 // For the browser test (tests/viewer) and for scripts: the page's state and its image.
 window.openpbrViewer = {
-  state: () => ({ ...stats, sampleTimes: undefined, error: errorText, name: state.name, settings }),
+  state: () => ({ ...stats, sampleTimes: undefined, error: errorText, name: state.name, settings, status: $('status').textContent }),
   loadMaterialText,
   // Parses a .mtlx text without loading it: the material names, or the error message.
   parse(source, file) {
@@ -213,7 +254,7 @@ window.openpbrViewer = {
   },
   // Builds (or finds) the render kernel of a feature mask: { compileSeconds, buildSeconds }.
   async buildKernel(mask) {
-    const { compileSeconds, buildSeconds } = await state.renderer.pipelinesFor(mask);
+    const { compileSeconds, buildSeconds } = await state.renderer.pipelinesFor(mask, featureLabel(mask));
     return { compileSeconds, buildSeconds };
   },
   samplesPerSecond() {
@@ -233,4 +274,7 @@ window.openpbrViewer = {
   },
 };
 
-main().catch((error) => showError(error.message));
+main().catch((error) => {
+  caption.done('the viewer could not start; the message is above the image');
+  showError(error.message);
+});

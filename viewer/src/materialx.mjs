@@ -2,15 +2,25 @@
 // loader (host/scene/material_library.cpp), so a file loads here exactly when `openpbr render
 // --materials` loads it, with the same values: inputs are the parameter table's MaterialX
 // inputs (parameters.mjs materialxInputs), each given once, of the table's type, with a
-// constant value (no connections), in the document's color space; numbers are comma-separated
-// finite float32 values; booleans 'true' or 'false'. Each <surfacematerial> whose surfaceshader
-// is an open_pbr_surface is a material (named after it), then each open_pbr_surface no
-// material references (named after the node). Errors throw MaterialError with a location.
+// constant value (no connections); numbers are comma-separated finite float32 values; booleans
+// 'true' or 'false'. color3 values are converted from their colour space (the input's
+// colorspace, else the document's, else acescg) into the working space (colour_spaces.mjs, the
+// C++ loader's table); an unknown colour space is an error. An open_pbr_surface may name its
+// version: 1.1 and 1.1.1 are read. Each <surfacematerial> whose surfaceshader is an
+// open_pbr_surface is a material (named after it), then each open_pbr_surface no material
+// references (named after the node). Errors throw MaterialError with a location.
+import { COLOUR_SPACE_NAMES, DEFAULT_DOCUMENT_SPACE, toWorkingSpace } from './colour_spaces.mjs';
 import { materialxInputs } from './parameters.mjs';
 
 export class MaterialError extends Error {}
 
 const CONNECTION_ATTRIBUTES = ['nodename', 'nodegraph', 'output', 'interfacename'];
+const SUPPORTED_VERSIONS = ['1.1', '1.1.1'];
+
+function unknownColorspace(name) {
+  return `unknown colorspace '${name}' (known: ${COLOUR_SPACE_NAMES.join(', ')})`;
+}
+
 // What std::from_chars accepts as a float in the C++ reader: an optional '-', digits with an
 // optional fraction (or a fraction alone), an optional exponent; a leading '+' is dropped first.
 const NUMBER_RE = /^-?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?$/;
@@ -43,7 +53,7 @@ function readInput(file, colorspace, surface, input, inputs, values, seen) {
   const fail = (problem) => { throw new MaterialError(`${where(file, input)}: ${problem}`); };
   if (name === '') fail(`open_pbr_surface '${surfaceName}' has an <input> without a name`);
   const known = inputs.get(name);
-  if (!known) fail(`${context}: unknown input name (not an OpenPBR 1.1 input)`);
+  if (!known) fail(`${context}: unknown input name (not an OpenPBR 1.1.1 input)`);
   if (seen.has(name)) fail(`${context}: input given more than once`);
   for (const attribute of CONNECTION_ATTRIBUTES) {
     if (input.hasAttribute(attribute)) {
@@ -53,10 +63,10 @@ function readInput(file, colorspace, surface, input, inputs, values, seen) {
   const type = input.getAttribute('type');
   if (type === null) fail(`${context}: missing type attribute (expected '${known.type}')`);
   if (type !== known.type) fail(`${context}: wrong type '${type}', expected '${known.type}'`);
-  const inputColorspace = input.getAttribute('colorspace') ?? '';
-  if (inputColorspace !== '' && inputColorspace !== colorspace) {
-    fail(`${context}: colorspace '${inputColorspace}' differs from the document's '${colorspace}'; color space conversion is not supported`);
-  }
+  // An input's own colorspace overrides the document's; only color3 values are converted.
+  const inputColorspace = input.getAttribute('colorspace');
+  const space = inputColorspace ?? colorspace;
+  if (inputColorspace !== null && toWorkingSpace(space, [0, 0, 0]) === null) fail(`${context}: ${unknownColorspace(space)}`);
   const text = input.getAttribute('value');
   if (text === null) fail(`${context}: no value attribute`);
   let value;
@@ -72,6 +82,7 @@ function readInput(file, colorspace, surface, input, inputs, values, seen) {
       fail(`${context}: value '${text}' has ${components.length} component(s), type '${known.type}' needs ${expected}`);
     }
     value = expected === 1 ? components[0] : components;
+    if (known.type === 'color3') value = toWorkingSpace(space, components);
   }
   seen.add(name);
   // geometry_* vectors are checked but not stored: the render kernel sets the frame per hit.
@@ -79,6 +90,10 @@ function readInput(file, colorspace, surface, input, inputs, values, seen) {
 }
 
 function readSurface(file, colorspace, surface, materialName, inputs) {
+  const version = surface.getAttribute('version');
+  if (version !== null && !SUPPORTED_VERSIONS.includes(version)) {
+    throw new MaterialError(`${where(file, surface)}: open_pbr_surface '${surface.getAttribute('name') ?? ''}': version '${version}' is not supported (this loader reads OpenPBR 1.1 and 1.1.1)`);
+  }
   const values = {};
   const seen = new Set();
   for (const input of surface.children) {
@@ -98,7 +113,9 @@ export function parseMaterialX(text, file, table, parser = new DOMParser()) {
     throw new MaterialError(`${file}: not a MaterialX document (root element is <${root.tagName}>, expected <materialx>)`);
   }
   const inputs = materialxInputs(table.parameters);
-  const colorspace = root.getAttribute('colorspace') ?? '';
+  // No colorspace on the document: the specification's default, ACEScg ("Metadata").
+  const colorspace = root.getAttribute('colorspace') ?? DEFAULT_DOCUMENT_SPACE;
+  if (toWorkingSpace(colorspace, [0, 0, 0]) === null) throw new MaterialError(`${file}: <materialx>: ${unknownColorspace(colorspace)}`);
   const topLevel = new Map();
   for (const element of root.children) {
     const name = element.getAttribute('name') ?? '';

@@ -10,10 +10,34 @@ const PATH_STATE_FLOATS = 24; // RENDER_PATH_STATE_FLOATS in render_steps.slang
 const ANALYSIS_HEADER = 4; // VIEWER_RECORD_HEADER in object_record.slang
 const ANALYSIS_EXTRA = 4; // VIEWER_RECORD_EXTRA
 
-async function fetchOk(url, what) {
-  const response = await fetch(url);
-  if (!response.ok) throw new Error(`${what}: ${response.status} ${(await response.text()).slice(0, 2000)}`);
-  return response;
+const KERNEL_RETRIES = 20; // answers "busy" (503) in a row before a kernel request fails, e.g. 60
+const RETRY_LIMIT_SECONDS = 60; // the longest wait between them, whatever Retry-After says, e.g. 120
+
+// fetch(url), with a failure to reach the server and an answer other than 2xx as errors that
+// say what was asked for and the server's message. `busyIsAnswer`: a 503 is returned, not thrown.
+async function fetchOk(url, what, busyIsAnswer = false) {
+  let response;
+  try {
+    response = await fetch(url);
+  } catch (error) {
+    throw new Error(`${what}: the server did not answer (${error.message})`);
+  }
+  if (response.ok || (busyIsAnswer && response.status === 503)) return response;
+  throw new Error(`${what}: ${(await response.text()).trim().slice(0, 4000) || `HTTP ${response.status}`}`);
+}
+
+// A kernel's WGSL from the server, which compiles it on request. `onPhase('compile')` while it
+// compiles; a busy server (503: its compile queue is full) is asked again after its Retry-After,
+// with `onPhase('wait', seconds)` before each wait.
+async function fetchKernel(url, what, onPhase) {
+  for (let attempt = 1; ; attempt++) {
+    onPhase('compile');
+    const response = await fetchOk(url, what, attempt < KERNEL_RETRIES);
+    if (response.ok) return response;
+    const seconds = Math.min(RETRY_LIMIT_SECONDS, Math.max(1, Number(response.headers.get('retry-after')) || 5));
+    onPhase('wait', seconds);
+    await new Promise((resolve) => setTimeout(resolve, seconds * 1000));
+  }
 }
 
 // The device, with the storage-buffer count the render kernel needs checked first.
@@ -66,7 +90,9 @@ export class Renderer {
     this.size = 0;
   }
 
-  async init(displayCode) {
+  // The tables, the material analysis kernel and the display pass. `onPhase(phase, seconds)`:
+  // 'compile' (the server compiles the kernel), 'wait' (the server is busy), 'pipelines'.
+  async init(displayCode, onPhase = () => {}) {
     const device = this.device;
     const [lut, fuzz] = await Promise.all([
       fetchOk('/api/tables/lut.bin', 'energy-compensation table').then((r) => r.arrayBuffer()),
@@ -87,8 +113,10 @@ export class Renderer {
     this.renderLayout = device.createBindGroupLayout({ label: 'viewer.render.bindGroupLayout', entries });
     this.renderPipelineLayout = device.createPipelineLayout({ label: 'viewer.render.pipelineLayout', bindGroupLayouts: [this.renderLayout] });
 
-    const analysisResponse = await fetchOk('/api/kernel/object_record.wgsl', 'material analysis kernel');
-    const analysisModule = device.createShaderModule({ label: 'viewer.object_record.module', code: await analysisResponse.text() });
+    const analysisResponse = await fetchKernel('/api/kernel/object_record.wgsl', 'material analysis kernel', onPhase);
+    const analysisCode = await analysisResponse.text();
+    onPhase('pipelines');
+    const analysisModule = device.createShaderModule({ label: 'viewer.object_record.module', code: analysisCode });
     this.analysisLayout = device.createBindGroupLayout({
       label: 'viewer.object_record.bindGroupLayout',
       entries: [
@@ -152,19 +180,24 @@ export class Renderer {
   }
 
   // The render kernel's pipelines for a feature set, built on first use (the WGSL is generated
-  // by the server, specialized to the set).
-  pipelinesFor(mask) {
+  // by the server, specialized to the set). `label`: the set's name for messages, e.g.
+  // "coat+metal"; `onPhase` as for init() (the caller that starts the build gets the calls).
+  pipelinesFor(mask, label = String(mask), onPhase = () => {}) {
     if (!this.pipelines.has(mask)) {
       const build = async () => {
-        const response = await fetchOk(`/api/kernel/render.wgsl?features=${mask}`, `render kernel {features ${mask}}`);
+        const what = `render kernel {${label}}`;
+        const response = await fetchKernel(`/api/kernel/render.wgsl?features=${mask}`, what, onPhase);
         const compileSeconds = Number(response.headers.get('x-compile-seconds'));
         const code = await response.text();
+        onPhase('pipelines');
         const start = performance.now();
         const module = this.device.createShaderModule({ label: `viewer.render.module[${mask}]`, code });
         const make = (entryPoint) => this.device.createComputePipelineAsync({
           label: `viewer.render.${entryPoint}[${mask}]`,
           layout: this.renderPipelineLayout,
           compute: { module, entryPoint },
+        }).catch((error) => {
+          throw new Error(`${what}: building the ${entryPoint} pipeline failed: ${error.message}`);
         });
         const [begin, step, end] = await Promise.all(['render_begin_main', 'render_step_main', 'render_end_main'].map(make));
         return { begin, step, end, compileSeconds, buildSeconds: (performance.now() - start) / 1000 };

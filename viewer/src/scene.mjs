@@ -3,6 +3,7 @@
 // ground y = -1, the same camera, area light and sky, so that `openpbr render --materials
 // FILE.mtlx --cell N` renders the very image the page renders. Buffer offsets come from the
 // kernel header (layout.mjs); vectors are computed in float32 like the C++ host.
+import { rec709ToWorkingSpace } from './colour_spaces.mjs';
 import { required } from './layout.mjs';
 
 const HEADER = 'openpbr_render_kernel.h';
@@ -63,12 +64,13 @@ export function makeScene(k, record, wavelengths) {
   const light = [-3.5, 5.5, 3.5];
   put(s('LIGHT_CENTER'), light);
   scene[s('LIGHT_RADIUS')] = 1;
-  put(s('LIGHT_RADIANCE'), [40, 38, 34]);
-  put(s('SKY_ZENITH'), [0.16, 0.26, 0.5]);
-  put(s('SKY_HORIZON'), [0.7, 0.75, 0.85]);
+  // The light and sky colours are linear Rec.709, stored in the working space (as render.cpp).
+  put(s('LIGHT_RADIANCE'), rec709ToWorkingSpace([40, 38, 34].map(f)));
+  put(s('SKY_ZENITH'), rec709ToWorkingSpace([0.16, 0.26, 0.5].map(f)));
+  put(s('SKY_HORIZON'), rec709ToWorkingSpace([0.7, 0.75, 0.85].map(f)));
   put(s('ENVIRONMENT'), [0.2, 0.2, 0.2]);
   put(s('SUN_DIRECTION'), normalized(light.map(f)));
-  put(s('SUN_GLOW'), [0.6, 0.45, 0.25]);
+  put(s('SUN_GLOW'), rec709ToWorkingSpace([0.6, 0.45, 0.25].map(f)));
   scene[s('SUN_EXPONENT')] = 12;
   scene[s('NITS_TO_UNITS')] = 0.01; // kNitsToRenderUnits
   scene[s('CHECKER_SIZE')] = 0.5;
