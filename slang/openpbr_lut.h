@@ -819,10 +819,10 @@ OPENPBR_FUNC float openpbr_ggx_albedo_anisotropic(float mu, float roughness, flo
 // build of the full conformance module then takes 16.7 G instructions instead of 19.1 G
 // (callgrind, -13 %; the corners alone 2.15 G, docs/thin-film-estimate.md "Rolled film-table
 // reads"), while GCC at -O2 unrolls them as it does at -O3 (kept rolled, the corner loop's
-// selects cost 13 % of the estimate's instructions at -O2, docs/thin-film-cost.md). Or 0: the
-// loops left to each compiler, which unrolls them (the loads of a node in flight at once, a
-// shorter prepare of filmed materials on GPUs whose table reads wait on memory; the longer
-// build). Outputs are the same either way.
+// selects cost 13 % of the estimate's instructions at -O2, docs/thin-film-estimate.md "Cost").
+// Or 0: the loops left to each compiler, which unrolls them (the loads of a node in flight at
+// once, a shorter prepare of filmed materials on GPUs whose table reads wait on memory; the
+// longer build). Outputs are the same either way.
 #ifndef OPENPBR_ROLLED_FILM_TABLE_READS
 #define OPENPBR_ROLLED_FILM_TABLE_READS 1
 #endif

@@ -1,5 +1,5 @@
 // thin_film_regression_cases.h - the cases of the thin film's regression table
-// (tests/data/thin_film_regression.f32): one film evaluation per case, over the axes the film's
+// (tests/data/thin_film_regression_<working space>.f32): one film evaluation per case, over the axes the film's
 // cost work was held to: thickness 0-3 um, film IOR 1-3, view cosine 0-1 (more of it near
 // grazing and near the film's critical cosine), outside IOR 1, 1.3 or 1.6, path spread 0 or
 // 0.03 um, a dielectric base of IOR 1.5 or 2.4, a copper-like or a white metal, and both bases,
