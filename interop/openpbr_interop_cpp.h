@@ -31,6 +31,11 @@
 #define OPENPBR_CPP_USE_VECTOR_LIBRARY \
     using namespace glm;               \
     typedef std::conditional<sizeof(float) == 4, glm::vec<4, float, glm::aligned_highp>, glm::vec<4, float>>::type vec4;
+// With SSE lanes the thin film's four-lane form is the faster one (openpbr_interop.h,
+// OPENPBR_FILM_FOUR_LANES).
+#ifndef OPENPBR_FILM_FOUR_LANES
+#define OPENPBR_FILM_FOUR_LANES 1
+#endif
 #else
 #define OPENPBR_CPP_USE_VECTOR_LIBRARY using namespace glm;
 #endif
