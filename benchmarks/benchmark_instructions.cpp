@@ -7,6 +7,8 @@
 //
 // Usage: benchmark_instructions <prepare|eval|sample|pdf> <variant> <calls>
 //        benchmark_instructions --list      (the variant names, one per line)
+// The variants: the per-feature materials, then Soap_Bubble (materials/open_pbr_soapbubble.mtlx:
+// a thin-walled film over a dielectric of IOR 1, the film's dielectric-only path).
 // The directions are those of benchmark_bsdf: 256 views, lights and random triples from
 // std::mt19937(7).
 #include <cstdio>
@@ -33,11 +35,26 @@ int usage(const char* program)
     return 2;
 }
 
+// The inputs of materials/open_pbr_soapbubble.mtlx (this program reads no files).
+host::FeatureVariant soap_bubble()
+{
+    host::FeatureVariant variant{"Soap_Bubble", openpbr_make_default_resolved_inputs()};
+    variant.inputs.specular_roughness = 0.0f;
+    variant.inputs.specular_ior = 1.0f;
+    variant.inputs.transmission_weight = 1.0f;
+    variant.inputs.thin_film_weight = 1.0f;
+    variant.inputs.thin_film_thickness = 0.5f;
+    variant.inputs.thin_film_ior = 1.4f;
+    variant.inputs.geometry_thin_walled = true;
+    return variant;
+}
+
 }  // namespace
 
 int main(int argc, char** argv)
 {
-    const std::vector<host::FeatureVariant> variants = host::feature_variants();
+    std::vector<host::FeatureVariant> variants = host::feature_variants();
+    variants.push_back(soap_bubble());
     if (argc == 2 && std::string(argv[1]) == "--list")
     {
         for (const host::FeatureVariant& variant : variants)

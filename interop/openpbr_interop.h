@@ -164,6 +164,29 @@
 // out of line (the C++ and CUDA backends); elsewhere OPENPBR_FUNC (GPU compilers inline every call).
 #ifndef OPENPBR_INLINE_FUNC
 #define OPENPBR_INLINE_FUNC OPENPBR_FUNC
+
+// Prefix of a loop of at most 8 steps that GPU drivers keep rolled and C++ compilers unroll,
+// e.g. OPENPBR_ROLLED_ON_GPU for (int lobe = 0; lobe < 6; ++lobe) { ... }: OPENPBR_DONT_UNROLL on
+// the GPU backends (each step's code compiled once, a shorter build), `#pragma GCC unroll 8`
+// from the C++ backend (GCC and Clang at -O2 keep such a loop rolled, GCC unrolls it at -O3;
+// unrolled, the step's index is a constant and the selects it drives fold away). The loop
+// computes the same values either way.
+#ifndef OPENPBR_ROLLED_ON_GPU
+#define OPENPBR_ROLLED_ON_GPU OPENPBR_DONT_UNROLL
+#endif
+
+// The form of the thin film's full model (slang/math/openpbr_thin_film.h), e.g. 0 (the default):
+// one lane, the stacks that differ in their base (the dielectric, the conductor's three
+// channels) one after another. Or 1: the four stacks side by side in the lanes of vec4s, the
+// six lobes' phases computed once for all of them. The C++ backend sets 1 where vec4 is GLM's
+// SSE vector (GLM_FORCE_INTRINSICS, this project's build): one film evaluation then takes 2,024
+// instructions instead of 5,292 (docs/thin-film-estimate.md "Cost"). Elsewhere 0: on the GPU
+// paths the four-lane form grew llvmpipe's build of the full module by half and the SPIR-V by
+// 2 %, and C++ without SIMD ran it slower than one lane. Both forms give the same reflectance
+// within 1e-5 (tests/bsdf/test_thin_film_regression.cpp); e.g. -DOPENPBR_FILM_FOUR_LANES=0 keeps
+// a SIMD C++ build on the one-lane form.
+#ifndef OPENPBR_FILM_FOUR_LANES
+#define OPENPBR_FILM_FOUR_LANES 0
 #endif
 
 // Every backend must provide these; checked here so a new backend fails loudly.

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <type_traits>
 
 // GLM is the C++ vector library unless the host brings its own (OPENPBR_USE_CUSTOM_VEC_TYPES).
 // The host includes <glm/glm.hpp> first (as for any GLM-based header library; slang/openpbr.h,
@@ -16,7 +17,28 @@
     "OpenPBR (C++): include <glm/glm.hpp> before the OpenPBR headers, or include slang/openpbr.h (which includes it), or define OPENPBR_USE_CUSTOM_VEC_TYPES=1 and provide vec2/vec3/vec4 and their math functions"
 #endif
 #include <glm/glm.hpp>
+// vec4 as GLM's aligned vector where GLM's SIMD is on (GLM_FORCE_INTRINSICS before GLM, as this
+// project's build defines it): its arithmetic, min, max, abs, floor and sqrt are then one or a few
+// SSE instructions for the four lanes (the thin film's four stacks and four spectral lobes).
+// Elsewhere, or with OPENPBR_CPP_ALIGNED_VEC4=0 (e.g. for a host whose own code must see
+// glm::vec4 there), vec4 is glm::vec4; both compute the same values lane by lane. (The test
+// sizeof(float) == 4 keeps the double-precision copy of the headers, tools/make_double_headers.py,
+// where float reads double, on GLM's plain dvec4.)
+#ifndef OPENPBR_CPP_ALIGNED_VEC4
+#define OPENPBR_CPP_ALIGNED_VEC4 1
+#endif
+#if OPENPBR_CPP_ALIGNED_VEC4 && GLM_CONFIG_SIMD == GLM_ENABLE && GLM_CONFIG_ALIGNED_GENTYPES == GLM_ENABLE
+#define OPENPBR_CPP_USE_VECTOR_LIBRARY \
+    using namespace glm;               \
+    typedef std::conditional<sizeof(float) == 4, glm::vec<4, float, glm::aligned_highp>, glm::vec<4, float>>::type vec4;
+// With SSE lanes the thin film's four-lane form is the faster one (openpbr_interop.h,
+// OPENPBR_FILM_FOUR_LANES).
+#ifndef OPENPBR_FILM_FOUR_LANES
+#define OPENPBR_FILM_FOUR_LANES 1
+#endif
+#else
 #define OPENPBR_CPP_USE_VECTOR_LIBRARY using namespace glm;
+#endif
 #else
 #define OPENPBR_CPP_USE_VECTOR_LIBRARY
 #endif
@@ -73,6 +95,13 @@ inline std::uint32_t openpbr_runtime_feature_mask = 0xffffffffu;
 // Lambertian pdf; C-family compilers would otherwise warn.
 #define OPENPBR_UNUSED(name) (void)(name)
 #define OPENPBR_OUT(type) type&
+
+// Short loops unrolled by the compiler (openpbr_interop.h, OPENPBR_ROLLED_ON_GPU).
+#if defined(__GNUC__)
+#define OPENPBR_ROLLED_ON_GPU _Pragma("GCC unroll 8")
+#else
+#define OPENPBR_ROLLED_ON_GPU
+#endif
 
 // Program-scope constants (e.g. OpenPBR_VacuumIor): one definition across translation units.
 #define OPENPBR_GLOBAL_CONSTANT inline const

@@ -819,19 +819,21 @@ OPENPBR_FUNC float openpbr_ggx_albedo_anisotropic(float mu, float roughness, flo
 
 // ---- Table 5: the microfacet cosines of a lobe's reflected light (thin film) ----------------
 
-// How table 5 is read, e.g. 1 (the default): in loops kept rolled (OPENPBR_DONT_UNROLL), each
-// one read site: a node's four bilinear corners, a cell's four nodes, the lobe's quartiles and a
-// node segment's quartiles and median. llvmpipe's build of the full conformance module then
-// takes 16.7 G instructions instead of 19.1 G (callgrind, -13 %; the corners alone 2.15 G,
-// docs/thin-film-estimate.md "Rolled film-table reads"). Or 0: the loops left to the compiler,
-// which unrolls them (the loads of a node in flight at once, a shorter prepare of filmed
-// materials on GPUs whose table reads wait on memory; the longer build). Outputs are the same
-// either way.
+// How table 5 is read, e.g. 1 (the default): in loops kept rolled on GPUs and unrolled in C++
+// (OPENPBR_ROLLED_ON_GPU), each one read site on the GPU: a node's four bilinear corners, a
+// cell's four nodes, the lobe's quartiles and a node segment's quartiles and median. llvmpipe's
+// build of the full conformance module then takes 16.7 G instructions instead of 19.1 G
+// (callgrind, -13 %; the corners alone 2.15 G, docs/thin-film-estimate.md "Rolled film-table
+// reads"), while GCC at -O2 unrolls them as it does at -O3 (kept rolled, the corner loop's
+// selects cost 13 % of the estimate's instructions at -O2, docs/thin-film-estimate.md "Cost").
+// Or 0: the loops left to each compiler, which unrolls them (the loads of a node in flight at
+// once, a shorter prepare of filmed materials on GPUs whose table reads wait on memory; the
+// longer build). Outputs are the same either way.
 #ifndef OPENPBR_ROLLED_FILM_TABLE_READS
 #define OPENPBR_ROLLED_FILM_TABLE_READS 1
 #endif
 #if OPENPBR_ROLLED_FILM_TABLE_READS
-#define OPENPBR_FILM_TABLE_READ_LOOP OPENPBR_DONT_UNROLL
+#define OPENPBR_FILM_TABLE_READ_LOOP OPENPBR_ROLLED_ON_GPU
 #else
 #define OPENPBR_FILM_TABLE_READ_LOOP
 #endif

@@ -127,6 +127,18 @@ OPENPBR_FUNC vec3 openpbr_safe_normalize(vec3 v, vec3 fallback)
     return (length_squared > 1e-30f && length_squared <= OPENPBR_FLOAT_MAX) ? v * openpbr_rsqrt(length_squared) : fallback;
 }
 
+// The two polynomials in u2 = u^2, written once for every argument type (float or vector):
+// cos(pi u), and sin(pi u) / u.
+#define OPENPBR_COS_PI_POLYNOMIAL(u2) \
+    (1.0f +                           \
+     (u2) * (-4.934802201f +          \
+             (u2) * (4.058712126f +   \
+                     (u2) * (-1.335262769f + (u2) * (0.2353306304f + (u2) * (-0.02580689139f + (u2)*0.001929574309f))))))
+#define OPENPBR_SIN_PI_OVER_U_POLYNOMIAL(u2) \
+    (3.141592654f +                          \
+     (u2) * (-5.167712780f +                 \
+             (u2) * (2.550164040f + (u2) * (-0.5992645293f + (u2) * (0.08214588661f + (u2) * -0.007370430946f)))))
+
 // (sin(pi t), cos(pi t)) for t in [0, 1], e.g. t = 0.25 gives (0.7071, 0.7071). Taylor series
 // in u = t - 1/2 (|pi u| <= pi/2): sin(pi t) = cos(pi u) to u^12 and cos(pi t) = -sin(pi u) to
 // u^11, so the truncation error is at most 6e-9 and 6e-8 (the first terms left out,
@@ -139,15 +151,22 @@ OPENPBR_FUNC vec2 openpbr_sin_cos_pi(float t)
 {
     const float u = t - 0.5f;
     const float u2 = u * u;
-    const float cos_pi_u =
-        1.0f + u2 * (-4.934802201f +
-                     u2 * (4.058712126f +
-                           u2 * (-1.335262769f + u2 * (0.2353306304f + u2 * (-0.02580689139f + u2 * 0.001929574309f)))));
-    const float sin_pi_u =
-        u *
-        (3.141592654f +
-         u2 * (-5.167712780f + u2 * (2.550164040f + u2 * (-0.5992645293f + u2 * (0.08214588661f + u2 * -0.007370430946f)))));
-    return vec2(cos_pi_u, -sin_pi_u);
+    return vec2(OPENPBR_COS_PI_POLYNOMIAL(u2), -(u * OPENPBR_SIN_PI_OVER_U_POLYNOMIAL(u2)));
+}
+
+// openpbr_sin_cos_pi in four lanes: sin(pi t) and cos(pi t) for each t in [0, 1].
+OPENPBR_FUNC vec4 openpbr_sin_pi(vec4 t)
+{
+    const vec4 u = t - vec4(0.5f);
+    const vec4 u2 = u * u;
+    return OPENPBR_COS_PI_POLYNOMIAL(u2);
+}
+
+OPENPBR_FUNC vec4 openpbr_cos_pi(vec4 t)
+{
+    const vec4 u = t - vec4(0.5f);
+    const vec4 u2 = u * u;
+    return -(u * OPENPBR_SIN_PI_OVER_U_POLYNOMIAL(u2));
 }
 
 // Component `channel` (0, 1, 2) of v, for loops over the RGB channels (a select chain, which

@@ -40,7 +40,7 @@
 //    (rho = r21 r23, z = rho e^{i delta}; the weights W_cj sum to 1). H depends only on the film
 //    and the angle, not on the base or the polarization, so one set of film harmonics serves
 //    both polarizations, the three channels of a conductor, and the dielectric and metal bases
-//    evaluated at the same microfacet angle (openpbr_thin_film_harmonics). The series keeps
+//    evaluated at the same microfacet angle (openpbr_thin_film_harmonic_sum). The series keeps
 //    M = 4 harmonics explicitly and sums the rest in closed form as a geometric series: for
 //    m > M, g^(m^2) becomes g^((M+1)^2 + 3 (M+1)(m - M - 1)), the chord of the exponent between
 //    m = M+1 and m = 2(M+1). The tail is exact for g = 1, so a zero-thickness film reproduces
@@ -48,7 +48,17 @@
 //    sharp, there is no truncation ringing. The chord (rather than the tangent at m = M+1) was
 //    chosen by the error against the spectral reference: it halves the worst grazing-angle
 //    error. The tail needs one complex division per lobe and polarization, so it is evaluated
-//    only where it can matter (OPENPBR_THIN_FILM_TRUNCATION_ERROR).
+//    only where it can matter (OPENPBR_THIN_FILM_TRUNCATION_ERROR); the four-lane form below also
+//    leaves out explicit harmonics whose bound is below a fifth of that setting.
+//  * Two forms of one evaluation, chosen per language by OPENPBR_FILM_FOUR_LANES
+//    (interop/openpbr_interop.h; the same reflectance within 1e-5). One lane (0, the GPU
+//    languages and C++ without SIMD): the stacks one after another, the film's harmonics summed
+//    once per evaluation (openpbr_thin_film_harmonics). Four lanes (1, C++ with GLM's SIMD):
+//    the four stacks that differ in their base (the conductor's three channels and
+//    the dielectric) are evaluated side by side in the lanes of vec4s, and the six lobes' phases
+//    (sine, cosine and damping, computed once) in two more: the harmonics, every stack's series
+//    and the closed-form tail read them (openpbr_thin_film_fresnel_bases). A dielectric base is
+//    a conductor channel whose imaginary parts are 0, so one lane's arithmetic serves all four.
 //  * Evanescent film: when n_o sin(theta) >= n_f the wave does not propagate in the film
 //    (frustrated total internal reflection) and there is no fringe; the reflectance is then
 //    smooth in wavelength and is evaluated exactly at each lobe centre with the film's
@@ -78,7 +88,9 @@
 // 2 |A| g^25 |rho|^5 / (1 - |rho|); the tail (a complex division per lobe and polarization) is
 // evaluated only where that bound, with the largest lobe damping g, is above this value.
 // |rho| = |r21 r23| is small away from grazing incidence (0.006 for a 1.4 film on 1.5 glass,
-// about 0.15 on a metal), so most evaluations skip it. 1e-5 is a thirtieth of the smallest
+// about 0.15 on a metal), so most evaluations skip it. The explicit harmonics m = 1..4 are
+// summed only as far as the later ones could add a fifth of this value to a channel (with the
+// largest channel's sum of absolute lobe weights, 2.49). 1e-5 is a thirtieth of the smallest
 // error of the full model against the spectral reference (0.0003-0.008, tests/bsdf/test_thin_film.cpp).
 #ifndef OPENPBR_THIN_FILM_TRUNCATION_ERROR
 #define OPENPBR_THIN_FILM_TRUNCATION_ERROR 1e-5f
@@ -369,26 +381,6 @@ OPENPBR_FUNC OpenPBR_ThinFilmLobePhase openpbr_thin_film_lobe_phase(float optica
     return phase;
 }
 
-// The closed-form tail m >= 5 of one polarization's series averaged over one spectral lobe:
-// g^25 z^5 / (1 - g^15 z), z = rho e^{i delta_j} (the chord of the exponent, see the top).
-OPENPBR_FUNC float openpbr_thin_film_lobe_tail(OPENPBR_IN(OpenPBR_ThinFilmPolarization) polarization,
-                                               OPENPBR_IN(OpenPBR_ThinFilmLobePhase) phase)
-{
-    const vec2 round_trip = openpbr_complex_multiply(polarization.rho, phase.phasor);  // z
-    const vec2 round_trip_squared = openpbr_complex_multiply(round_trip, round_trip);
-    const float damping_squared = phase.damping * phase.damping;
-    const float damping_4 = damping_squared * damping_squared;
-    const float damping_8 = damping_4 * damping_4;
-    const float damping_16 = damping_8 * damping_8;
-    // 1 - w z = (1 - rho) + rho (1 - phasor) + (1 - w) z, each part without cancellation.
-    const vec2 one_minus_tail_ratio_z = polarization.one_minus_rho +
-                                        openpbr_complex_multiply(polarization.rho, phase.one_minus_phasor) +
-                                        (1.0f - damping_8 * damping_4 * damping_squared * phase.damping) * round_trip;
-    const vec2 round_trip_4 = openpbr_complex_multiply(round_trip_squared, round_trip_squared);
-    return damping_16 * damping_8 * phase.damping *
-           openpbr_complex_divide(openpbr_complex_multiply(round_trip_4, round_trip), one_minus_tail_ratio_z).x;
-}
-
 // N^2 and N cos_b = sqrt(N^2 - (n_o sin theta)^2) of a base, the two numbers the stack needs.
 struct OpenPBR_ThinFilmBase OPENPBR_DIFFERENTIABLE
 {
@@ -417,7 +409,638 @@ OPENPBR_FUNC OpenPBR_ThinFilmStack openpbr_thin_film_conductor_stack(OPENPBR_IN(
     return openpbr_thin_film_stack(inputs, base.ior_squared, base.normal_term);
 }
 
-// ---- Public functions ---------------------------------------------------------------------------
+// ---- What both forms of the full model share ----------------------------------------------
+
+// Optical path difference 2 n_f d cos_f of the film (0 when it is evanescent).
+OPENPBR_FUNC float openpbr_thin_film_optical_path_difference(OPENPBR_IN(OpenPBR_ThinFilmInputs) inputs)
+{
+    return 2.0f * openpbr_safe_sqrt(inputs.film_normal_term) * inputs.thickness_um;
+}
+
+// The film over a dielectric base (real IOR dielectric_ior), over a conductor base (complex IOR
+// base_n + i base_k per RGB channel), or over both at once: the base layer's two Fresnel
+// factors at one microfacet angle (spec "Thin-film iridescence": the film lies over the metal
+// and the dielectric), which share the film's harmonics. A base that is not wanted returns 0.
+struct OpenPBR_ThinFilmBasePair OPENPBR_DIFFERENTIABLE
+{
+    vec3 dielectric;
+    vec3 conductor;
+};
+
+// The pair before any stack is evaluated: 1 for each wanted base (what grazing incidence and
+// total internal reflection at a dielectric base give), 0 for a base that is not wanted.
+OPENPBR_FUNC OpenPBR_ThinFilmBasePair openpbr_thin_film_total_reflection_pair(bool with_dielectric, bool with_conductor)
+{
+    OpenPBR_ThinFilmBasePair pair;
+    pair.dielectric = vec3(with_dielectric ? 1.0f : 0.0f);
+    pair.conductor = vec3(with_conductor ? 1.0f : 0.0f);
+    return pair;
+}
+
+#if OPENPBR_FILM_FOUR_LANES
+
+// ---- The full model: every base at once, in four lanes -----------------------------------------
+//
+// One film evaluation sets up the four stacks that differ in their base side by side in the
+// lanes of vec4s: x, y, z the conductor's red, green and blue channels, w the dielectric base
+// (whose values are real). The six spectral lobes' phases are computed once, lobes 0-3 in the
+// lanes of one vec4 and lobes 4, 5 in x, y of a second (its z, w carry no weight), and read by
+// the harmonics and the closed-form tail of every stack and polarization. In C++ with GLM's SIMD
+// the lanes are SSE registers (interop/openpbr_interop_cpp.h); a GPU build may select this form
+// too (OPENPBR_FILM_FOUR_LANES=1), at a longer driver build: llvmpipe's build of the full
+// module took 52 % more instructions.
+
+// Four numbers per spectral lobe, lobes 0-3 in the lanes of `low` and 4, 5 in x, y of `high`.
+// A loop over the lobes reads lobe j from lane x of `low` at its step j, each step shifting
+// the queue by one lobe (openpbr_thin_film_lobe_queue_next): one vector shuffle where reading
+// lane j by index would be a chain of selects in the GPU code.
+struct OpenPBR_ThinFilmLobeQueue OPENPBR_DIFFERENTIABLE
+{
+    vec4 low;
+    vec4 high;
+};
+
+OPENPBR_FUNC OpenPBR_ThinFilmLobeQueue openpbr_thin_film_lobe_queue(vec4 low, vec4 high)
+{
+    OpenPBR_ThinFilmLobeQueue queue;
+    queue.low = low;
+    queue.high = high;
+    return queue;
+}
+
+OPENPBR_FUNC OpenPBR_ThinFilmLobeQueue openpbr_thin_film_lobe_queue_next(OPENPBR_IN(OpenPBR_ThinFilmLobeQueue) queue)
+{
+    return openpbr_thin_film_lobe_queue(vec4(queue.low.y, queue.low.z, queue.low.w, queue.high.x),
+                                        vec4(queue.high.y, queue.high.z, queue.high.w, 0.0f));
+}
+
+// The lobes' constants in queue form: centres, deviations and each channel's weights.
+OPENPBR_FUNC OpenPBR_ThinFilmLobeQueue openpbr_thin_film_lobe_centres()
+{
+    return openpbr_thin_film_lobe_queue(
+        vec4(OPENPBR_THIN_FILM_LOBE0_NU, OPENPBR_THIN_FILM_LOBE1_NU, OPENPBR_THIN_FILM_LOBE2_NU, OPENPBR_THIN_FILM_LOBE3_NU),
+        vec4(OPENPBR_THIN_FILM_LOBE4_NU, OPENPBR_THIN_FILM_LOBE5_NU, OPENPBR_THIN_FILM_LOBE4_NU,
+             OPENPBR_THIN_FILM_LOBE5_NU));
+}
+
+OPENPBR_FUNC OpenPBR_ThinFilmLobeQueue openpbr_thin_film_lobe_deviations()
+{
+    return openpbr_thin_film_lobe_queue(vec4(OPENPBR_THIN_FILM_LOBE0_SIGMA, OPENPBR_THIN_FILM_LOBE1_SIGMA,
+                                             OPENPBR_THIN_FILM_LOBE2_SIGMA, OPENPBR_THIN_FILM_LOBE3_SIGMA),
+                                        vec4(OPENPBR_THIN_FILM_LOBE4_SIGMA, OPENPBR_THIN_FILM_LOBE5_SIGMA,
+                                             OPENPBR_THIN_FILM_LOBE4_SIGMA, OPENPBR_THIN_FILM_LOBE5_SIGMA));
+}
+
+// Channel `channel` (0-2) of every lobe's weight vec3 (OPENPBR_THIN_FILM_LOBEk_WEIGHT).
+OPENPBR_FUNC OpenPBR_ThinFilmLobeQueue openpbr_thin_film_lobe_weights(int channel)
+{
+    return openpbr_thin_film_lobe_queue(vec4(openpbr_channel_of(OPENPBR_THIN_FILM_LOBE0_WEIGHT, channel),
+                                             openpbr_channel_of(OPENPBR_THIN_FILM_LOBE1_WEIGHT, channel),
+                                             openpbr_channel_of(OPENPBR_THIN_FILM_LOBE2_WEIGHT, channel),
+                                             openpbr_channel_of(OPENPBR_THIN_FILM_LOBE3_WEIGHT, channel)),
+                                        vec4(openpbr_channel_of(OPENPBR_THIN_FILM_LOBE4_WEIGHT, channel),
+                                             openpbr_channel_of(OPENPBR_THIN_FILM_LOBE5_WEIGHT, channel), 0.0f, 0.0f));
+}
+
+// The largest sum of a channel's absolute lobe weights, e.g. 2.49 (red): what the film's
+// harmonic m can reach in a channel, |H_c(m)| <= sum_j |W_cj| g_j^(m^2).
+OPENPBR_FUNC float openpbr_thin_film_largest_weight_sum()
+{
+    const vec3 sums = abs(OPENPBR_THIN_FILM_LOBE0_WEIGHT) + abs(OPENPBR_THIN_FILM_LOBE1_WEIGHT) +
+                      abs(OPENPBR_THIN_FILM_LOBE2_WEIGHT) + abs(OPENPBR_THIN_FILM_LOBE3_WEIGHT) +
+                      abs(OPENPBR_THIN_FILM_LOBE4_WEIGHT) + abs(OPENPBR_THIN_FILM_LOBE5_WEIGHT);
+    return max(max(sums.x, sums.y), sums.z);
+}
+
+// The phases of four lobes (as openpbr_thin_film_lobe_phase, lane by lane).
+struct OpenPBR_ThinFilmLobeLanes OPENPBR_DIFFERENTIABLE
+{
+    vec4 phasor_real;            // cos(2 pi OPD nu_j)
+    vec4 phasor_imaginary;       // sin(2 pi OPD nu_j)
+    vec4 one_minus_phasor_real;  // 1 - cos, as 2 sin^2 of the half phase (exact near a zero phase)
+    vec4 damping;                // g_j
+};
+
+OPENPBR_FUNC OpenPBR_ThinFilmLobeLanes openpbr_thin_film_lobe_lanes(float optical_path_difference_um,
+                                                                    float spread_phase_variance, vec4 nu, vec4 sigma)
+{
+    // Half the phase, reduced to [0, pi) (cycles >= 0).
+    const vec4 half_turn = fract(optical_path_difference_um * nu);
+    const vec4 sine = openpbr_sin_pi(half_turn);
+    const vec4 cosine = openpbr_cos_pi(half_turn);
+    // tau^2 = (2 pi)^2 (OPD^2 sigma^2 + spread^2 nu^2): the phase variance over the spectral
+    // lobe and the microfacets.
+    const vec4 path_sigma = OPENPBR_TWO_PI * optical_path_difference_um * sigma;
+    const vec4 tau_squared = path_sigma * path_sigma + spread_phase_variance * (nu * nu);
+    OpenPBR_ThinFilmLobeLanes lanes;
+    lanes.one_minus_phasor_real = 2.0f * sine * sine;
+    lanes.phasor_real = vec4(1.0f) - lanes.one_minus_phasor_real;
+    lanes.phasor_imaginary = 2.0f * sine * cosine;
+    lanes.damping = exp(-0.5f * min(tau_squared, vec4(1e4f)));
+    return lanes;
+}
+
+// Harmonic m of four lobes, advanced one m at a time: e^{i m delta_j} and g_j^(m^2), with
+// g^((m+1)^2) = g^(m^2) g^(2m+1).
+struct OpenPBR_ThinFilmHarmonicLanes OPENPBR_DIFFERENTIABLE
+{
+    vec4 power_real;       // Re e^{i m delta_j}
+    vec4 power_imaginary;  // Im e^{i m delta_j}
+    vec4 damping;          // g_j^(m^2)
+    vec4 damping_step;     // g_j^(2m+1): the next harmonic's factor
+};
+
+OPENPBR_FUNC OpenPBR_ThinFilmHarmonicLanes openpbr_thin_film_harmonic_lanes_zero(OPENPBR_IN(OpenPBR_ThinFilmLobeLanes) lobes)
+{
+    OpenPBR_ThinFilmHarmonicLanes harmonic;
+    harmonic.power_real = vec4(1.0f);
+    harmonic.power_imaginary = vec4(0.0f);
+    harmonic.damping = vec4(1.0f);
+    harmonic.damping_step = lobes.damping;
+    return harmonic;
+}
+
+OPENPBR_FUNC OpenPBR_ThinFilmHarmonicLanes openpbr_thin_film_harmonic_lanes_next(OPENPBR_IN(OpenPBR_ThinFilmHarmonicLanes)
+                                                                                     harmonic,
+                                                                                 OPENPBR_IN(OpenPBR_ThinFilmLobeLanes) lobes)
+{
+    OpenPBR_ThinFilmHarmonicLanes next;
+    next.power_real = harmonic.power_real * lobes.phasor_real - harmonic.power_imaginary * lobes.phasor_imaginary;
+    next.power_imaginary = harmonic.power_real * lobes.phasor_imaginary + harmonic.power_imaginary * lobes.phasor_real;
+    next.damping = harmonic.damping * harmonic.damping_step;
+    next.damping_step = harmonic.damping_step * (lobes.damping * lobes.damping);
+    return next;
+}
+
+// The film's harmonic H(m) = sum_j W_j g_j^(m^2) e^{i m delta_j} in the RGB lanes x, y, z (w 0),
+// real part (imaginary false) or imaginary part, from the six lobes' lanes.
+OPENPBR_FUNC vec4 openpbr_thin_film_harmonic_sum(OPENPBR_IN(OpenPBR_ThinFilmHarmonicLanes) low,
+                                                 OPENPBR_IN(OpenPBR_ThinFilmHarmonicLanes) high, bool imaginary)
+{
+    const vec4 low_value = low.damping * (imaginary ? low.power_imaginary : low.power_real);
+    const vec4 high_value = high.damping * (imaginary ? high.power_imaginary : high.power_real);
+    return vec4(OPENPBR_THIN_FILM_LOBE0_WEIGHT, 0.0f) * low_value.x +
+           vec4(OPENPBR_THIN_FILM_LOBE1_WEIGHT, 0.0f) * low_value.y +
+           vec4(OPENPBR_THIN_FILM_LOBE2_WEIGHT, 0.0f) * low_value.z +
+           vec4(OPENPBR_THIN_FILM_LOBE3_WEIGHT, 0.0f) * low_value.w +
+           vec4(OPENPBR_THIN_FILM_LOBE4_WEIGHT, 0.0f) * high_value.x +
+           vec4(OPENPBR_THIN_FILM_LOBE5_WEIGHT, 0.0f) * high_value.y;
+}
+
+// The outside -> film interface of one polarization, r12 = (a1 - b1) / (a1 + b1) (real a1,
+// b1 >= 0): the same for every base.
+struct OpenPBR_ThinFilmTopInterface OPENPBR_DIFFERENTIABLE
+{
+    float a;
+    float b;
+    float inverse_sum;    // 1 / (a1 + b1)
+    float reflection;     // r12
+    float reflectance;    // R12
+    float transmittance;  // T12 = 1 - R12, computed directly (it vanishes at grazing incidence)
+};
+
+OPENPBR_FUNC OpenPBR_ThinFilmTopInterface openpbr_thin_film_top_interface(float a1, float b1)
+{
+    OpenPBR_ThinFilmTopInterface top;
+    top.a = a1;
+    top.b = b1;
+    top.inverse_sum = 1.0f / max(a1 + b1, 1e-30f);
+    top.reflection = (a1 - b1) * top.inverse_sum;
+    top.reflectance = top.reflection * top.reflection;
+    top.transmittance = 4.0f * a1 * b1 * top.inverse_sum * top.inverse_sum;
+    return top;
+}
+
+// One polarization's Airy series (as OpenPBR_ThinFilmPolarization) of the four stacks, one per
+// lane: rho and 1 - rho are complex (real and imaginary lanes).
+struct OpenPBR_ThinFilmSeriesLanes OPENPBR_DIFFERENTIABLE
+{
+    vec4 mean;       // C0
+    vec4 amplitude;  // A
+    vec4 rho_real;   // rho = r21 r23
+    vec4 rho_imaginary;
+    vec4 one_minus_rho_real;  // 1 - rho, without cancellation
+    vec4 one_minus_rho_imaginary;
+    vec4 rho_magnitude;  // |rho|
+    vec4 bound_factor;   // 2 |A| / (1 - |rho|): harmonics m > M sum to at most this times |rho|^(M+1)
+    vec4 tail_bound;     // 2 |A| |rho|^5 / (1 - |rho|): bounds the harmonics m >= 5 (before damping)
+};
+
+// The series of the four stacks reached through film -> base coefficients
+// r23 = (a2 - b2) / (a2 + b2), complex per lane, as openpbr_thin_film_polarization.
+OPENPBR_FUNC OpenPBR_ThinFilmSeriesLanes openpbr_thin_film_series_lanes(OPENPBR_IN(OpenPBR_ThinFilmTopInterface) top,
+                                                                        vec4 a2_real, vec4 a2_imaginary, vec4 b2_real,
+                                                                        vec4 b2_imaginary)
+{
+    // Quotients by a2 + b2 as multiplications by conj(a2 + b2) / |a2 + b2|^2 (one division).
+    const vec4 sum_real = a2_real + b2_real;
+    const vec4 sum_imaginary = a2_imaginary + b2_imaginary;
+    const vec4 inverse_sum_norm = vec4(1.0f) / max(sum_real * sum_real + sum_imaginary * sum_imaginary, vec4(1e-30f));
+    const vec4 difference_real = a2_real - b2_real;
+    const vec4 difference_imaginary = a2_imaginary - b2_imaginary;
+    const vec4 r23_real = (difference_real * sum_real + difference_imaginary * sum_imaginary) * inverse_sum_norm;
+    const vec4 r23_imaginary = (difference_imaginary * sum_real - difference_real * sum_imaginary) * inverse_sum_norm;
+    const vec4 reflectance_23 = r23_real * r23_real + r23_imaginary * r23_imaginary;
+    // 1 - |r23|^2 = 4 Re(a2 conj(b2)) / |a2 + b2|^2: the power entering the base.
+    const vec4 transmittance_23 =
+        max(4.0f * (a2_real * b2_real + a2_imaginary * b2_imaginary) * inverse_sum_norm, vec4(0.0f));
+    // 1 - R12 R23 = T12 + R12 T23 (using R12 + T12 = 1), without cancellation.
+    const vec4 inverse_denominator = vec4(1.0f) / max(top.transmittance + top.reflectance * transmittance_23, vec4(1e-30f));
+    OpenPBR_ThinFilmSeriesLanes series;
+    series.mean = top.reflectance + top.transmittance * top.transmittance * reflectance_23 * inverse_denominator;
+    series.amplitude = -top.transmittance * transmittance_23 * inverse_denominator;
+    series.rho_real = -top.reflection * r23_real;
+    series.rho_imaginary = -top.reflection * r23_imaginary;
+    // 1 + r12 r23 = 2 (a1 a2 + b1 b2) / ((a1 + b1)(a2 + b2)).
+    const vec4 scale = 2.0f * inverse_sum_norm * top.inverse_sum;
+    const vec4 numerator_real = top.a * a2_real + top.b * b2_real;
+    const vec4 numerator_imaginary = top.a * a2_imaginary + top.b * b2_imaginary;
+    series.one_minus_rho_real = (numerator_real * sum_real + numerator_imaginary * sum_imaginary) * scale;
+    series.one_minus_rho_imaginary = (numerator_imaginary * sum_real - numerator_real * sum_imaginary) * scale;
+    // |rho|^2 = R12 R23 and 1 / (1 - |rho|) = (1 + |rho|) / (1 - R12 R23), without cancellation.
+    const vec4 rho_squared = top.reflectance * reflectance_23;
+    series.rho_magnitude = sqrt(rho_squared);
+    series.bound_factor = 2.0f * abs(series.amplitude) * (vec4(1.0f) + series.rho_magnitude) * inverse_denominator;
+    series.tail_bound = series.bound_factor * (rho_squared * rho_squared) * series.rho_magnitude;
+    return series;
+}
+
+// The largest of a vec4's lanes.
+OPENPBR_FUNC float openpbr_largest_lane(vec4 v) { return max(max(v.x, v.y), max(v.z, v.w)); }
+
+// A rho^m of both polarizations in the four lanes, complex, advanced one m at a time.
+struct OpenPBR_ThinFilmAmplitudeLanes OPENPBR_DIFFERENTIABLE
+{
+    vec4 s_real;
+    vec4 s_imaginary;
+    vec4 p_real;
+    vec4 p_imaginary;
+};
+
+OPENPBR_FUNC OpenPBR_ThinFilmAmplitudeLanes openpbr_thin_film_amplitude_lanes_next(OPENPBR_IN(OpenPBR_ThinFilmAmplitudeLanes)
+                                                                                       powers,
+                                                                                   OPENPBR_IN(OpenPBR_ThinFilmSeriesLanes) s,
+                                                                                   OPENPBR_IN(OpenPBR_ThinFilmSeriesLanes) p)
+{
+    OpenPBR_ThinFilmAmplitudeLanes next;
+    next.s_real = powers.s_real * s.rho_real - powers.s_imaginary * s.rho_imaginary;
+    next.s_imaginary = powers.s_real * s.rho_imaginary + powers.s_imaginary * s.rho_real;
+    next.p_real = powers.p_real * p.rho_real - powers.p_imaginary * p.rho_imaginary;
+    next.p_imaginary = powers.p_real * p.rho_imaginary + powers.p_imaginary * p.rho_real;
+    return next;
+}
+
+// One polarization's closed-form tail m >= 5 of one lobe (as openpbr_thin_film_lobe_tail) in the
+// four stacks: Re(A rho^5 g^25 e^{5 i delta} / (1 - g^15 rho e^{i delta})), from the lobe's
+// numerator g^25 e^{5 i delta} and complement 1 - g^15 e^{i delta}, with
+// 1 - g^15 z = (1 - rho) + rho (1 - g^15 e^{i delta}), each part without cancellation.
+OPENPBR_FUNC vec4 openpbr_thin_film_tail_lanes(OPENPBR_IN(OpenPBR_ThinFilmSeriesLanes) series, vec4 amplitude_rho_5_real,
+                                               vec4 amplitude_rho_5_imaginary, float numerator_real,
+                                               float numerator_imaginary, float complement_real, float complement_imaginary)
+{
+    const vec4 denominator_real =
+        series.one_minus_rho_real + series.rho_real * complement_real - series.rho_imaginary * complement_imaginary;
+    const vec4 denominator_imaginary =
+        series.one_minus_rho_imaginary + series.rho_real * complement_imaginary + series.rho_imaginary * complement_real;
+    const vec4 top_real = amplitude_rho_5_real * numerator_real - amplitude_rho_5_imaginary * numerator_imaginary;
+    const vec4 top_imaginary = amplitude_rho_5_real * numerator_imaginary + amplitude_rho_5_imaginary * numerator_real;
+    return (top_real * denominator_real + top_imaginary * denominator_imaginary) /
+           max(denominator_real * denominator_real + denominator_imaginary * denominator_imaginary, vec4(1e-30f));
+}
+
+// One polarization's exact reflectance of the four stacks with an evanescent film at one
+// wavenumber (openpbr_thin_film_exact_polarization with C = 1, lane by lane).
+OPENPBR_FUNC vec4 openpbr_thin_film_exact_lanes(float s1, float s2, float outside_admittance, vec4 base_real,
+                                                vec4 base_imaginary)
+{
+    const float outside_s1 = outside_admittance * s1;
+    const vec4 numerator_real = (outside_admittance - base_real) + outside_s1 * base_imaginary;
+    const vec4 numerator_imaginary = (s2 - base_imaginary) - outside_s1 * base_real;
+    const vec4 denominator_real = (outside_admittance + base_real) + outside_s1 * base_imaginary;
+    const vec4 denominator_imaginary = (base_imaginary - s2) - outside_s1 * base_real;
+    const vec4 numerator_norm = numerator_real * numerator_real + numerator_imaginary * numerator_imaginary;
+    const vec4 denominator_norm = denominator_real * denominator_real + denominator_imaginary * denominator_imaginary;
+    // Only at grazing incidence onto a grazing base wave can both vanish; that limit reflects all
+    // (a select by arithmetic: the ratio is finite, the mask 0 or 1).
+    const vec4 valid = step(vec4(1e-30f), denominator_norm);
+    return min(numerator_norm / max(denominator_norm, vec4(1e-30f)), vec4(1.0f)) * valid + (vec4(1.0f) - valid);
+}
+
+// The bases of the four stacks (lanes as above): N^2 and the admittance N cos_b =
+// sqrt(N^2 - (n_o sin theta)^2) (principal root), complex.
+struct OpenPBR_ThinFilmBaseLanes OPENPBR_DIFFERENTIABLE
+{
+    vec4 ior_squared_real;
+    vec4 ior_squared_imaginary;
+    vec4 admittance_real;
+    vec4 admittance_imaginary;
+};
+
+// The lanes' principal square roots of a + i b with b >= 0 in every lane, as
+// openpbr_complex_sqrt: the larger part from sqrt((|a| + |z|) / 2), the other from b / 2 over
+// it, put in place by an arithmetic select on the sign of a.
+OPENPBR_FUNC OpenPBR_ThinFilmBaseLanes openpbr_thin_film_admittance_lanes(vec4 real_part, vec4 imaginary_part)
+{
+    const vec4 magnitude = sqrt(real_part * real_part + imaginary_part * imaginary_part);
+    const vec4 larger = sqrt(0.5f * (magnitude + abs(real_part)));
+    const vec4 smaller = 0.5f * imaginary_part / max(larger, vec4(1e-30f));
+    const vec4 nonnegative = step(vec4(0.0f), real_part);
+    OpenPBR_ThinFilmBaseLanes bases;
+    bases.admittance_real = larger * nonnegative + smaller * (vec4(1.0f) - nonnegative);
+    bases.admittance_imaginary = smaller * nonnegative + larger * (vec4(1.0f) - nonnegative);
+    return bases;
+}
+
+// The four stacks' reflectances: RGB of the conductor in x, y, z of `conductor`, of the
+// dielectric in x, y, z of `dielectric`.
+struct OpenPBR_ThinFilmLaneSums OPENPBR_DIFFERENTIABLE
+{
+    vec4 conductor;
+    vec4 dielectric;
+};
+
+// What the propagating film's series leave to a loop over the lobes: the closed-form tail's
+// inputs per lobe (in queues) and per stack (in lanes, as everywhere in this form), and the
+// stacks that take it.
+struct OpenPBR_ThinFilmTail OPENPBR_DIFFERENTIABLE
+{
+    OpenPBR_ThinFilmLobeQueue numerator_real;  // g^25 e^{5 i delta}
+    OpenPBR_ThinFilmLobeQueue numerator_imaginary;
+    OpenPBR_ThinFilmLobeQueue complement_real;  // 1 - g^15 e^{i delta}
+    OpenPBR_ThinFilmLobeQueue complement_imaginary;
+    OpenPBR_ThinFilmAmplitudeLanes amplitude_rho_5;  // A rho^5
+    vec4 stacks;                                     // 1 for the stacks that take the tail, else 0
+};
+
+// The propagating film's series summed over its harmonics: R = C0 + sum_pol sum_m Re(A rho^m H(m))
+// with the film's harmonics H(m) as far as the wanted stacks need them (see the top), and the
+// tail's inputs where a stack needs them (tail.stacks, all 0 where none does; the caller sets
+// the rest).
+OPENPBR_FUNC OpenPBR_ThinFilmLaneSums openpbr_thin_film_harmonic_sums(OPENPBR_IN(OpenPBR_ThinFilmInputs) inputs,
+                                                                      OPENPBR_IN(OpenPBR_ThinFilmSeriesLanes) s,
+                                                                      OPENPBR_IN(OpenPBR_ThinFilmSeriesLanes) p, vec4 wanted,
+                                                                      OPENPBR_OUT(OpenPBR_ThinFilmTail) tail)
+{
+    const float optical_path_difference_um = openpbr_thin_film_optical_path_difference(inputs);
+    const float spread_phase_variance = openpbr_thin_film_spread_phase_variance(inputs.optical_path_spread_um);
+    const OpenPBR_ThinFilmLobeQueue centres = openpbr_thin_film_lobe_centres();
+    const OpenPBR_ThinFilmLobeQueue deviations = openpbr_thin_film_lobe_deviations();
+    const OpenPBR_ThinFilmLobeLanes low =
+        openpbr_thin_film_lobe_lanes(optical_path_difference_um, spread_phase_variance, centres.low, deviations.low);
+    const OpenPBR_ThinFilmLobeLanes high =
+        openpbr_thin_film_lobe_lanes(optical_path_difference_um, spread_phase_variance, centres.high, deviations.high);
+
+    // How many harmonics the wanted stacks need: harmonics m > M add at most
+    // W K P^(M+1) g^((M+1)^2) to a channel, with W the largest channel weight sum, K and P the
+    // largest bound factor and |rho| of the wanted stacks and g the largest lobe damping. M is
+    // the smallest in 0..4 where that is at most a fifth of OPENPBR_THIN_FILM_TRUNCATION_ERROR
+    // (4 where none is). The tail runs only where M is 4: its bound, K P^5 g^25, is below M = 3's.
+    const float damping = max(openpbr_largest_lane(low.damping), max(high.damping.x, high.damping.y));
+    const float bound_factor = openpbr_largest_lane(max(s.bound_factor, p.bound_factor) * wanted);
+    const float rho_magnitude = openpbr_largest_lane(max(s.rho_magnitude, p.rho_magnitude) * wanted);
+    const float damping_4 = openpbr_square(damping * damping);
+    const float damping_9 = damping_4 * damping_4 * damping;
+    const float damping_16 = damping_4 * damping_4 * damping_4 * damping_4;
+    const float first_bound = openpbr_thin_film_largest_weight_sum() * bound_factor * rho_magnitude;
+    const float rho_squared = rho_magnitude * rho_magnitude;
+    const float drop_threshold = 0.2f * OPENPBR_THIN_FILM_TRUNCATION_ERROR;
+    const int harmonic_count = int(first_bound * damping > drop_threshold) +
+                               int(first_bound * rho_magnitude * damping_4 > drop_threshold) +
+                               int(first_bound * rho_squared * damping_9 > drop_threshold) +
+                               int(first_bound * rho_squared * rho_magnitude * damping_16 > drop_threshold);
+
+    OpenPBR_ThinFilmLaneSums sums;
+    sums.conductor = 0.5f * (s.mean + p.mean);
+    sums.dielectric = vec4(sums.conductor.w);
+    OpenPBR_ThinFilmHarmonicLanes low_harmonic = openpbr_thin_film_harmonic_lanes_zero(low);
+    OpenPBR_ThinFilmHarmonicLanes high_harmonic = openpbr_thin_film_harmonic_lanes_zero(high);
+    OpenPBR_ThinFilmAmplitudeLanes powers;  // A rho^m
+    powers.s_real = s.amplitude;
+    powers.s_imaginary = vec4(0.0f);
+    powers.p_real = p.amplitude;
+    powers.p_imaginary = vec4(0.0f);
+    // At most four steps (harmonic_count, above).
+    for (int harmonic = 1; harmonic <= harmonic_count; ++harmonic)
+    {
+        low_harmonic = openpbr_thin_film_harmonic_lanes_next(low_harmonic, low);
+        high_harmonic = openpbr_thin_film_harmonic_lanes_next(high_harmonic, high);
+        powers = openpbr_thin_film_amplitude_lanes_next(powers, s, p);
+        const vec4 harmonic_real = openpbr_thin_film_harmonic_sum(low_harmonic, high_harmonic, false);
+        const vec4 harmonic_imaginary = openpbr_thin_film_harmonic_sum(low_harmonic, high_harmonic, true);
+        // Lane c of the conductor reads channel c's harmonic; the dielectric's rho is real.
+        sums.conductor +=
+            (powers.s_real + powers.p_real) * harmonic_real - (powers.s_imaginary + powers.p_imaginary) * harmonic_imaginary;
+        sums.dielectric += (powers.s_real.w + powers.p_real.w) * harmonic_real;
+    }
+
+    // The tail in the stacks where the harmonics m >= 5 may exceed OPENPBR_THIN_FILM_TRUNCATION_ERROR
+    // (the stacks one film evaluation one stack at a time gave it to), from each lobe's
+    // g^25 e^{5 i delta} = g^16 e^{4 i delta} g^9 e^{i delta} and
+    // 1 - g^15 e^{i delta} = (1 - e^{i delta}) + (1 - g^9 g^6) e^{i delta}.
+    const vec4 tail_bound = max(s.tail_bound, p.tail_bound) * (damping_16 * damping_9) * wanted;
+    tail.stacks = step(vec4(OPENPBR_THIN_FILM_TRUNCATION_ERROR), tail_bound) * float(harmonic_count == 4);
+    if (openpbr_largest_lane(tail.stacks) <= 0.0f)
+    {
+        return sums;
+    }
+    tail.amplitude_rho_5 = openpbr_thin_film_amplitude_lanes_next(powers, s, p);
+    const OpenPBR_ThinFilmHarmonicLanes low_fifth = openpbr_thin_film_harmonic_lanes_next(low_harmonic, low);
+    const OpenPBR_ThinFilmHarmonicLanes high_fifth = openpbr_thin_film_harmonic_lanes_next(high_harmonic, high);
+    tail.numerator_real =
+        openpbr_thin_film_lobe_queue(low_fifth.damping * low_fifth.power_real, high_fifth.damping * high_fifth.power_real);
+    tail.numerator_imaginary = openpbr_thin_film_lobe_queue(low_fifth.damping * low_fifth.power_imaginary,
+                                                            high_fifth.damping * high_fifth.power_imaginary);
+    const vec4 low_damping_2 = low.damping * low.damping;
+    const vec4 high_damping_2 = high.damping * high.damping;
+    const vec4 low_ratio = low_harmonic.damping_step * (low_damping_2 * low_damping_2 * low_damping_2);
+    const vec4 high_ratio = high_harmonic.damping_step * (high_damping_2 * high_damping_2 * high_damping_2);
+    tail.complement_real =
+        openpbr_thin_film_lobe_queue(low.one_minus_phasor_real + (vec4(1.0f) - low_ratio) * low.phasor_real,
+                                     high.one_minus_phasor_real + (vec4(1.0f) - high_ratio) * high.phasor_real);
+    tail.complement_imaginary =
+        openpbr_thin_film_lobe_queue(-low_ratio * low.phasor_imaginary, -high_ratio * high.phasor_imaginary);
+    return sums;
+}
+
+// k0 d tanh(b)/b per lobe, b = k0 d sqrt((n_o sin theta)^2 - n_f^2), k0 = 2 pi nu: S of an
+// evanescent film's characteristic-matrix form (openpbr_thin_film_evanescent_reflectance), for
+// the four lobes of `nu`.
+OPENPBR_FUNC vec4 openpbr_thin_film_evanescent_lanes(vec4 nu, float thickness_um, float decay_root)
+{
+    const vec4 k0_d = OPENPBR_TWO_PI * nu * thickness_um;
+    const vec4 b = k0_d * decay_root;
+    const vec4 decay = exp(-2.0f * b);
+    const vec4 b_squared = b * b;
+    // tanh(b)/b; the series below b = 0.05 avoids 1 - decay cancelling (an arithmetic select).
+    const vec4 series = vec4(1.0f) - b_squared * (1.0f / 3.0f) + b_squared * b_squared * (2.0f / 15.0f);
+    const vec4 ratio = (vec4(1.0f) - decay) / ((vec4(1.0f) + decay) * max(b, vec4(1e-30f)));
+    const vec4 large = step(vec4(0.05f), b);
+    return k0_d * (ratio * large + series * (vec4(1.0f) - large));
+}
+
+OPENPBR_FUNC OpenPBR_ThinFilmBasePair openpbr_thin_film_fresnel_bases(OPENPBR_IN(OpenPBR_ThinFilmInputs) inputs,
+                                                                      bool with_dielectric, float dielectric_ior,
+                                                                      bool with_conductor, vec3 base_n, vec3 base_k)
+{
+    OpenPBR_ThinFilmBasePair pair = openpbr_thin_film_total_reflection_pair(with_dielectric, with_conductor);
+    const float n_b = openpbr_clamp_finite(dielectric_ior, OPENPBR_THIN_FILM_MIN_IOR, OPENPBR_THIN_FILM_MAX_IOR);
+    const float dielectric_normal_term = openpbr_thin_film_normal_term(n_b, inputs.n_o, inputs.outside_normal_term);
+    if (inputs.cos_o <= 0.0f)
+    {
+        return pair;
+    }
+    // Total internal reflection at a dielectric base reflects everything (pair.dielectric 1).
+    const bool dielectric = with_dielectric && dielectric_normal_term > 0.0f;
+    const vec4 wanted = vec4(vec3(with_conductor ? 1.0f : 0.0f), dielectric ? 1.0f : 0.0f);
+    // N^2 and N cos_b: the conductor's from n + i k, the dielectric's real (w).
+    const vec3 n = openpbr_clamp_finite(base_n, OPENPBR_THIN_FILM_MIN_IOR, OPENPBR_THIN_FILM_MAX_IOR);
+    const vec3 k = openpbr_clamp_finite(base_k, 0.0f, OPENPBR_THIN_FILM_MAX_EXTINCTION);
+    // Re(N^2) - (n_o sin theta)^2 = (n - n_o)(n + n_o) + (n_o cos)^2 - k^2 (openpbr_thin_film_normal_term).
+    OpenPBR_ThinFilmBaseLanes bases = openpbr_thin_film_admittance_lanes(
+        vec4((n - inputs.n_o) * (n + inputs.n_o) + inputs.outside_normal_term - k * k, dielectric_normal_term),
+        vec4(2.0f * n * k, 0.0f));
+    bases.ior_squared_real = vec4(n * n - k * k, n_b * n_b);
+    bases.ior_squared_imaginary = vec4(2.0f * n * k, 0.0f);
+
+    const bool evanescent = inputs.film_normal_term <= 0.0f;
+    const float cos_f = openpbr_safe_sqrt(inputs.film_normal_term) / inputs.n_f;
+    const float film_term = inputs.n_f * cos_f;
+    // s: r_ij = (n_i cos_i - n_j cos_j) / (n_i cos_i + n_j cos_j);
+    // p: r_ij = (n_j cos_i - n_i cos_j) / (n_j cos_i + n_i cos_j), with the film -> base pair
+    // multiplied through by N so that only N^2 and N cos_b appear.
+    const OpenPBR_ThinFilmSeriesLanes s =
+        openpbr_thin_film_series_lanes(openpbr_thin_film_top_interface(inputs.n_o * inputs.cos_o, film_term),
+                                       vec4(film_term), vec4(0.0f), bases.admittance_real, bases.admittance_imaginary);
+    const OpenPBR_ThinFilmSeriesLanes p = openpbr_thin_film_series_lanes(
+        openpbr_thin_film_top_interface(inputs.n_f * inputs.cos_o, inputs.n_o * cos_f), bases.ior_squared_real * cos_f,
+        bases.ior_squared_imaginary * cos_f, inputs.n_f * bases.admittance_real, inputs.n_f * bases.admittance_imaginary);
+    OpenPBR_ThinFilmTail tail;
+    tail.numerator_real = openpbr_thin_film_lobe_queue(vec4(0.0f), vec4(0.0f));
+    tail.numerator_imaginary = tail.numerator_real;
+    tail.complement_real = tail.numerator_real;
+    tail.complement_imaginary = tail.numerator_real;
+    tail.amplitude_rho_5.s_real = vec4(0.0f);
+    tail.amplitude_rho_5.s_imaginary = vec4(0.0f);
+    tail.amplitude_rho_5.p_real = vec4(0.0f);
+    tail.amplitude_rho_5.p_imaginary = vec4(0.0f);
+    tail.stacks = vec4(1.0f);
+    OpenPBR_ThinFilmLaneSums sums;
+    sums.conductor = vec4(0.0f);
+    sums.dielectric = vec4(0.0f);
+    if (evanescent)
+    {
+        // No fringes: every lobe is evaluated exactly at its centre in the loop below, S in the
+        // numerator's queue.
+        const float decay_root = sqrt(max(-inputs.film_normal_term, 0.0f));
+        const OpenPBR_ThinFilmLobeQueue centres = openpbr_thin_film_lobe_centres();
+        tail.numerator_real =
+            openpbr_thin_film_lobe_queue(openpbr_thin_film_evanescent_lanes(centres.low, inputs.thickness_um, decay_root),
+                                         openpbr_thin_film_evanescent_lanes(centres.high, inputs.thickness_um, decay_root));
+    }
+    else
+    {
+        sums = openpbr_thin_film_harmonic_sums(inputs, s, p, wanted, tail);
+    }
+    if (openpbr_largest_lane(tail.stacks) > 0.0f)
+    {
+        // cos_b / N = N cos_b / N^2, the p admittance of the evanescent film's base.
+        const vec4 ior_norm =
+            max(bases.ior_squared_real * bases.ior_squared_real + bases.ior_squared_imaginary * bases.ior_squared_imaginary,
+                vec4(1e-30f));
+        const vec4 admittance_p_real =
+            (bases.admittance_real * bases.ior_squared_real + bases.admittance_imaginary * bases.ior_squared_imaginary) /
+            ior_norm;
+        const vec4 admittance_p_imaginary =
+            (bases.admittance_imaginary * bases.ior_squared_real - bases.admittance_real * bases.ior_squared_imaginary) /
+            ior_norm;
+        const float film_ior_squared = inputs.n_f * inputs.n_f;
+        OpenPBR_ThinFilmLobeQueue red = openpbr_thin_film_lobe_weights(0);
+        OpenPBR_ThinFilmLobeQueue green = openpbr_thin_film_lobe_weights(1);
+        OpenPBR_ThinFilmLobeQueue blue = openpbr_thin_film_lobe_weights(2);
+        OpenPBR_ThinFilmLaneSums lobe_sums;
+        lobe_sums.conductor = vec4(0.0f);
+        lobe_sums.dielectric = vec4(0.0f);
+        // Six steps, one per spectral lobe (lane x of each queue).
+        OPENPBR_ROLLED_ON_GPU
+        for (int lobe_index = 0; lobe_index < 6; ++lobe_index)
+        {
+            vec4 values = vec4(0.0f);
+            if (evanescent)
+            {
+                const float factor = tail.numerator_real.low.x;  // S = k0 d tanh(b)/b
+                values = 0.5f *
+                         (openpbr_thin_film_exact_lanes(factor, factor * inputs.film_normal_term, inputs.n_o * inputs.cos_o,
+                                                        bases.admittance_real, bases.admittance_imaginary) +
+                          openpbr_thin_film_exact_lanes(
+                              factor * film_ior_squared, factor * inputs.film_normal_term / film_ior_squared,
+                              inputs.cos_o / inputs.n_o, admittance_p_real, admittance_p_imaginary));
+            }
+            else
+            {
+                values = openpbr_thin_film_tail_lanes(s, tail.amplitude_rho_5.s_real, tail.amplitude_rho_5.s_imaginary,
+                                                      tail.numerator_real.low.x, tail.numerator_imaginary.low.x,
+                                                      tail.complement_real.low.x, tail.complement_imaginary.low.x) +
+                         openpbr_thin_film_tail_lanes(p, tail.amplitude_rho_5.p_real, tail.amplitude_rho_5.p_imaginary,
+                                                      tail.numerator_real.low.x, tail.numerator_imaginary.low.x,
+                                                      tail.complement_real.low.x, tail.complement_imaginary.low.x);
+            }
+            // Lane c of the conductor takes channel c's weight, the dielectric every channel's.
+            const vec4 weight = vec4(red.low.x, green.low.x, blue.low.x, 0.0f);
+            lobe_sums.conductor += weight * values;
+            lobe_sums.dielectric += weight * values.w;
+            tail.numerator_real = openpbr_thin_film_lobe_queue_next(tail.numerator_real);
+            tail.numerator_imaginary = openpbr_thin_film_lobe_queue_next(tail.numerator_imaginary);
+            tail.complement_real = openpbr_thin_film_lobe_queue_next(tail.complement_real);
+            tail.complement_imaginary = openpbr_thin_film_lobe_queue_next(tail.complement_imaginary);
+            red = openpbr_thin_film_lobe_queue_next(red);
+            green = openpbr_thin_film_lobe_queue_next(green);
+            blue = openpbr_thin_film_lobe_queue_next(blue);
+        }
+        sums.conductor += lobe_sums.conductor * tail.stacks;
+        sums.dielectric += lobe_sums.dielectric * tail.stacks.w;
+    }
+    if (dielectric)
+    {
+        pair.dielectric = vec3(sums.dielectric.x, sums.dielectric.y, sums.dielectric.z);
+    }
+    if (with_conductor)
+    {
+        pair.conductor = vec3(sums.conductor.x, sums.conductor.y, sums.conductor.z);
+    }
+    // The sensitivities have negative lobes, so a strongly coloured spectrum can land slightly
+    // outside the RGB cube; a reflectance must stay in [0, 1].
+    pair.dielectric = openpbr_clamp_finite(pair.dielectric, 0.0f, 1.0f);
+    pair.conductor = openpbr_clamp_finite(pair.conductor, 0.0f, 1.0f);
+    return pair;
+}
+
+#else  // OPENPBR_FILM_FOUR_LANES
+
+// ---- The full model in one lane: the stacks one after another ------------------------------
+//
+// One film evaluation loops over the stacks that differ in their base (the dielectric, then the
+// conductor's three channels), each in scalar and vec2 arithmetic, and sums the six lobes'
+// harmonics once per evaluation (openpbr_thin_film_harmonics).
+
+// The closed-form tail m >= 5 of one polarization's series averaged over one spectral lobe:
+// g^25 z^5 / (1 - g^15 z), z = rho e^{i delta_j} (the chord of the exponent, see the top).
+OPENPBR_FUNC float openpbr_thin_film_lobe_tail(OPENPBR_IN(OpenPBR_ThinFilmPolarization) polarization,
+                                               OPENPBR_IN(OpenPBR_ThinFilmLobePhase) phase)
+{
+    const vec2 round_trip = openpbr_complex_multiply(polarization.rho, phase.phasor);  // z
+    const vec2 round_trip_squared = openpbr_complex_multiply(round_trip, round_trip);
+    const float damping_squared = phase.damping * phase.damping;
+    const float damping_4 = damping_squared * damping_squared;
+    const float damping_8 = damping_4 * damping_4;
+    const float damping_16 = damping_8 * damping_8;
+    // 1 - w z = (1 - rho) + rho (1 - phasor) + (1 - w) z, each part without cancellation.
+    const vec2 one_minus_tail_ratio_z = polarization.one_minus_rho +
+                                        openpbr_complex_multiply(polarization.rho, phase.one_minus_phasor) +
+                                        (1.0f - damping_8 * damping_4 * damping_squared * phase.damping) * round_trip;
+    const vec2 round_trip_4 = openpbr_complex_multiply(round_trip_squared, round_trip_squared);
+    return damping_16 * damping_8 * phase.damping *
+           openpbr_complex_divide(openpbr_complex_multiply(round_trip_4, round_trip), one_minus_tail_ratio_z).x;
+}
 
 // Spectral lobe `index` (0 .. 5) of the fit above, selected by index so that the lobe sum is a
 // loop whose body exists once in the compiled code (Mesa's NIR inlines every call: written out
@@ -642,32 +1265,6 @@ OPENPBR_FUNC vec3 openpbr_thin_film_stack_reflectance(OPENPBR_IN(OpenPBR_ThinFil
     return rgb;
 }
 
-// Optical path difference 2 n_f d cos_f of the film (0 when it is evanescent).
-OPENPBR_FUNC float openpbr_thin_film_optical_path_difference(OPENPBR_IN(OpenPBR_ThinFilmInputs) inputs)
-{
-    return 2.0f * openpbr_safe_sqrt(inputs.film_normal_term) * inputs.thickness_um;
-}
-
-// The film over a dielectric base (real IOR dielectric_ior), over a conductor base (complex IOR
-// base_n + i base_k per RGB channel), or over both at once: the base layer's two Fresnel
-// factors at one microfacet angle (spec "Thin-film iridescence": the film lies over the metal
-// and the dielectric), which share the film's harmonics. A base that is not wanted returns 0.
-struct OpenPBR_ThinFilmBasePair OPENPBR_DIFFERENTIABLE
-{
-    vec3 dielectric;
-    vec3 conductor;
-};
-
-// The pair before any stack is evaluated: 1 for each wanted base (what grazing incidence and
-// total internal reflection at a dielectric base give), 0 for a base that is not wanted.
-OPENPBR_FUNC OpenPBR_ThinFilmBasePair openpbr_thin_film_total_reflection_pair(bool with_dielectric, bool with_conductor)
-{
-    OpenPBR_ThinFilmBasePair pair;
-    pair.dielectric = vec3(with_dielectric ? 1.0f : 0.0f);
-    pair.conductor = vec3(with_conductor ? 1.0f : 0.0f);
-    return pair;
-}
-
 // One loop over the stacks whose base differs (index 0 the dielectric, 1-3 the conductor's
 // channels), so the stack code is compiled once per call site.
 OPENPBR_FUNC OpenPBR_ThinFilmBasePair openpbr_thin_film_fresnel_bases(OPENPBR_IN(OpenPBR_ThinFilmInputs) inputs,
@@ -722,6 +1319,10 @@ OPENPBR_FUNC OpenPBR_ThinFilmBasePair openpbr_thin_film_fresnel_bases(OPENPBR_IN
     pair.conductor = openpbr_clamp_finite(pair.conductor, 0.0f, 1.0f);
     return pair;
 }
+
+#endif  // OPENPBR_FILM_FOUR_LANES
+
+// ---- Public functions ---------------------------------------------------------------------------
 
 // The full model on one base: a conductor of complex IOR base_n + i base_k per RGB channel, or
 // (conductor false) a dielectric of real IOR base_ior. All IORs absolute, thickness in

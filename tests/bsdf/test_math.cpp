@@ -55,6 +55,26 @@ TEST(SinCosPi, EndsAndMiddle)
     EXPECT_NEAR(at_one.y, -1.0f, 3e-7f);
 }
 
+// The four-lane forms the thin film's lobes use: openpbr_sin_pi / openpbr_cos_pi equal
+// openpbr_sin_cos_pi lane by lane (the same polynomials).
+TEST(SinCosPi, FourLanesEqualTheScalarForm)
+{
+    constexpr int steps = 1 << 12;
+    for (int step = 0; step <= steps; step += 4)
+    {
+        const openpbr::vec4 t(float(step) / steps, float(step + 1) / steps, float(step + 2) / steps,
+                              float(step + 3) / steps);
+        const openpbr::vec4 sine = openpbr::openpbr_sin_pi(t);
+        const openpbr::vec4 cosine = openpbr::openpbr_cos_pi(t);
+        for (int lane = 0; lane < 4; ++lane)
+        {
+            const glm::vec2 scalar = openpbr::openpbr_sin_cos_pi(t[lane]);
+            EXPECT_EQ(sine[lane], scalar.x) << t[lane];
+            EXPECT_EQ(cosine[lane], scalar.y) << t[lane];
+        }
+    }
+}
+
 // The channel helpers the per-channel loops use (openpbr_dielectric_compensation, the dielectric
 // lobe's eval and pdf): every channel read and written, the others untouched, and an infinite
 // value kept in its own channel (a mask product would turn the others into NaN).
@@ -73,10 +93,10 @@ TEST(ChannelHelpers, ReadAndReplaceOneChannel)
         EXPECT_EQ(openpbr::openpbr_channel_mask(channel)[channel], 1.0f);
         EXPECT_EQ(glm::dot(openpbr::openpbr_channel_mask(channel), glm::vec3(1.0f)), 1.0f);
     }
-    const glm::vec4 four(1.0f, 2.0f, 3.0f, 4.0f);
+    const openpbr::vec4 four(1.0f, 2.0f, 3.0f, 4.0f);
     for (int channel = 0; channel < 4; ++channel)
     {
-        const glm::vec4 replaced = openpbr::openpbr_with_channel(four, channel, infinity);
+        const openpbr::vec4 replaced = openpbr::openpbr_with_channel(four, channel, infinity);
         for (int other = 0; other < 4; ++other)
         {
             EXPECT_EQ(replaced[other], other == channel ? infinity : four[other]) << channel << " " << other;

@@ -142,6 +142,10 @@ RMATH_UNARY(fract)
 RMATH_UNARY(inversesqrt)
 RMATH_UNARY(sign)
 RMATH_UNARY(saturate)
+template <class V, class = vector_only<V>> V step(const V& edge, const V& x)
+{
+    return componentwise<V>([](float e, float p) { return p < e ? 0.0f : 1.0f; }, edge, x);
+}
 template <class V, class B, class = vector_only<V>> V max(const V& a, const B& b)
 {
     return componentwise<V>([](float p, float q) { return p > q ? p : q; }, a, b);
