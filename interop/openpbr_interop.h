@@ -164,6 +164,7 @@
 // out of line (the C++ and CUDA backends); elsewhere OPENPBR_FUNC (GPU compilers inline every call).
 #ifndef OPENPBR_INLINE_FUNC
 #define OPENPBR_INLINE_FUNC OPENPBR_FUNC
+#endif
 
 // Prefix of a loop of at most 8 steps that GPU drivers keep rolled and C++ compilers unroll,
 // e.g. OPENPBR_ROLLED_ON_GPU for (int lobe = 0; lobe < 6; ++lobe) { ... }: OPENPBR_DONT_UNROLL on
