@@ -7,6 +7,7 @@
 #include "host/scene/colour_spaces.h"
 #include "host/scene/material_library.h"
 
+#include <glm/glm.hpp>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -37,21 +38,27 @@ Matrix multiply(const Matrix& a, const Matrix& b)
     return product;
 }
 
+// GLM's inverse (column-major: element [row][column] of a Matrix is [column][row] of a dmat3).
 Matrix inverse(const Matrix& m)
 {
-    const double det = m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) -
-                       m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
-    Matrix r{};
-    r[0][0] = (m[1][1] * m[2][2] - m[1][2] * m[2][1]) / det;
-    r[0][1] = (m[0][2] * m[2][1] - m[0][1] * m[2][2]) / det;
-    r[0][2] = (m[0][1] * m[1][2] - m[0][2] * m[1][1]) / det;
-    r[1][0] = (m[1][2] * m[2][0] - m[1][0] * m[2][2]) / det;
-    r[1][1] = (m[0][0] * m[2][2] - m[0][2] * m[2][0]) / det;
-    r[1][2] = (m[0][2] * m[1][0] - m[0][0] * m[1][2]) / det;
-    r[2][0] = (m[1][0] * m[2][1] - m[1][1] * m[2][0]) / det;
-    r[2][1] = (m[0][1] * m[2][0] - m[0][0] * m[2][1]) / det;
-    r[2][2] = (m[0][0] * m[1][1] - m[0][1] * m[1][0]) / det;
-    return r;
+    glm::dmat3 columns(1.0);
+    for (int row = 0; row < 3; ++row)
+    {
+        for (int column = 0; column < 3; ++column)
+        {
+            columns[column][row] = m[row][column];
+        }
+    }
+    const glm::dmat3 inverted = glm::inverse(columns);
+    Matrix result{};
+    for (int row = 0; row < 3; ++row)
+    {
+        for (int column = 0; column < 3; ++column)
+        {
+            result[row][column] = inverted[column][row];
+        }
+    }
+    return result;
 }
 
 Matrix from_row_major(const std::array<double, 9>& values)
