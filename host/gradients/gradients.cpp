@@ -134,6 +134,18 @@ void run_on_large_stack(const std::function<void()>& work)
     }
 }
 
+namespace {
+
+// The plain value of one query, on the calling thread (which must have the large stack).
+ValueRecord generated_query_value(GeneratedMaterial& material, GeneratedDirection& view, GeneratedDirection& light)
+{
+    GeneratedValue value;
+    openpbr_gradient_query_value_0(&material, &view, &light, &value);
+    return from_generated<ValueRecord>(value);
+}
+
+}  // namespace
+
 ValueRecord query_value(const MaterialRecord& material, const Direction& view, const Direction& light)
 {
     ValueRecord result{};
@@ -141,9 +153,7 @@ ValueRecord query_value(const MaterialRecord& material, const Direction& view, c
         GeneratedMaterial generated_material = to_generated(material);
         GeneratedDirection generated_view = to_generated(view);
         GeneratedDirection generated_light = to_generated(light);
-        GeneratedValue value;
-        openpbr_gradient_query_value_0(&generated_material, &generated_view, &generated_light, &value);
-        result = from_generated<ValueRecord>(value);
+        result = generated_query_value(generated_material, generated_view, generated_light);
     });
     return result;
 }
@@ -156,9 +166,7 @@ ValueRecord query_reverse(const MaterialRecord& material, const Direction& view,
         GeneratedMaterial generated_material = to_generated(material);
         GeneratedDirection generated_view = to_generated(view);
         GeneratedDirection generated_light = to_generated(light);
-        GeneratedValue value;
-        openpbr_gradient_query_value_0(&generated_material, &generated_view, &generated_light, &value);
-        result = from_generated<ValueRecord>(value);
+        result = generated_query_value(generated_material, generated_view, generated_light);
         GeneratedValue generated_cotangent = to_generated(cotangent);
         GeneratedMaterial d_material;
         GeneratedDirection d_view;
