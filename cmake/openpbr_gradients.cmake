@@ -49,4 +49,4 @@ add_custom_command(
   DEPFILE ${OPENPBR_KERNEL_DIR}/gradients_gpu.d
   COMMENT "slangc spirv,wgsl: the GPU gradient kernels (targets/autodiff/gradients_gpu.slang)"
   VERBATIM)
-add_custom_target(openpbr_gradient_kernels DEPENDS ${OPENPBR_GRADIENT_KERNELS})  # not in ALL: test_gradients_gpu's
+add_custom_target(openpbr_gradient_kernels DEPENDS ${OPENPBR_GRADIENT_KERNELS})  # test_gradients_gpu's

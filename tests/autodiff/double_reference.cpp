@@ -4,6 +4,9 @@
 // host/studies/accuracy_double_variant.cpp does: one name cannot have two types).
 #include "tests/autodiff/double_reference.h"
 
+#include <stdexcept>
+#include <string>
+
 #define openpbr_lut_data autodiff_double_lut_data
 #define openpbr_fuzz_ltc_data autodiff_double_fuzz_ltc_data
 #define OPENPBR_CPP_VARIANT_NAMESPACE autodiff_double
@@ -26,13 +29,42 @@ static_assert(OPENPBR_GRADIENT_VALUE_FLOATS == openpbr::test::double_value_float
 
 namespace openpbr::test {
 
-DoubleValue double_query_value(const DoubleMaterial& material, const DoubleDirection& view, const DoubleDirection& light)
+namespace {
+
+namespace reference = openpbr::autodiff_double;
+
+reference::OpenPBR_PreparedBsdf prepare(const DoubleMaterial& material, const DoubleDirection& view)
 {
-    namespace reference = openpbr::autodiff_double;
     unpacked_record = material.data();
     const reference::OpenPBR_ResolvedInputs inputs = reference::openpbr_autodiff_double_unpack(0u);
     unpacked_record = nullptr;
-    const reference::OpenPBR_PreparedBsdf bsdf = reference::openpbr_prepare(inputs, glm::dvec3(view[0], view[1], view[2]));
+    return reference::openpbr_prepare(inputs, glm::dvec3(view[0], view[1], view[2]));
+}
+
+// The prepared field `field` (OPENPBR_GRADIENT_PREPARED_FIELDS' order) of a prepared BSDF.
+glm::dvec3& prepared_field(reference::OpenPBR_PreparedBsdf& bsdf, std::size_t field)
+{
+    std::size_t index = 0;
+#define OPENPBR_DOUBLE_FIELD(name) \
+    if (index++ == field)          \
+    {                              \
+        return bsdf.name;          \
+    }
+    OPENPBR_GRADIENT_PREPARED_FIELDS(OPENPBR_DOUBLE_FIELD)
+#undef OPENPBR_DOUBLE_FIELD
+    throw std::out_of_range("no prepared field " + std::to_string(field));
+}
+
+}  // namespace
+
+DoubleValue double_query_value(const DoubleMaterial& material, const DoubleDirection& view, const DoubleDirection& light,
+                               const PreparedFieldStep* prepared)
+{
+    reference::OpenPBR_PreparedBsdf bsdf = prepare(material, view);
+    if (prepared != nullptr)
+    {
+        prepared_field(bsdf, prepared->field)[int(prepared->channel)] += prepared->step;
+    }
     const glm::dvec3 light_direction(light[0], light[1], light[2]);
     const reference::OpenPBR_DiffuseSpecular value = reference::openpbr_eval(bsdf, light_direction);
     DoubleValue record{};
@@ -44,6 +76,32 @@ DoubleValue double_query_value(const DoubleMaterial& material, const DoubleDirec
     }
     record[OPENPBR_GRADIENT_VALUE_PDF] = reference::openpbr_pdf(bsdf, light_direction);
     return record;
+}
+
+double double_prepared_field(const DoubleMaterial& material, const DoubleDirection& view, std::size_t field,
+                             std::size_t channel)
+{
+    reference::OpenPBR_PreparedBsdf bsdf = prepare(material, view);
+    return prepared_field(bsdf, field)[int(channel)];
+}
+
+std::size_t double_prepared_field_count()
+{
+    std::size_t count = 0;
+#define OPENPBR_DOUBLE_COUNT(name) ++count;
+    OPENPBR_GRADIENT_PREPARED_FIELDS(OPENPBR_DOUBLE_COUNT)
+#undef OPENPBR_DOUBLE_COUNT
+    return count;
+}
+
+const char* double_prepared_field_name(std::size_t field)
+{
+    static const char* const names[] = {
+#define OPENPBR_DOUBLE_NAME(name) #name,
+        OPENPBR_GRADIENT_PREPARED_FIELDS(OPENPBR_DOUBLE_NAME)
+#undef OPENPBR_DOUBLE_NAME
+    };
+    return field < double_prepared_field_count() ? names[field] : "";
 }
 
 }  // namespace openpbr::test

@@ -71,6 +71,13 @@ bool finite_record(const MaterialRecord& record)
     return std::all_of(record.begin(), record.end(), [](float value) { return std::isfinite(value); });
 }
 
+DoubleMaterial double_material(const GradientQuery& query)
+{
+    DoubleMaterial material{};
+    std::copy(query.material.begin(), query.material.end(), material.begin());
+    return material;
+}
+
 double input_value(const GradientQuery& query, const CheckedInput& input)
 {
     switch (input.kind)
@@ -78,6 +85,12 @@ double input_value(const GradientQuery& query, const CheckedInput& input)
     case CheckedInput::Kind::material: return query.material[input.index];
     case CheckedInput::Kind::view: return query.view[input.index];
     case CheckedInput::Kind::light: return query.light[input.index];
+    case CheckedInput::Kind::prepared:
+    {
+        const DoubleMaterial material = double_material(query);
+        return double_prepared_field(material, {query.view[0], query.view[1], query.view[2]}, input.index / 3,
+                                     input.index % 3);
+    }
     }
     return 0.0;
 }
@@ -330,17 +343,19 @@ std::vector<GradientQuery> special_point_queries()
 
 double double_scalar(const GradientQuery& query, const ValueWeights& scalar, const CheckedInput& input, double step)
 {
-    DoubleMaterial material{};
-    std::copy(query.material.begin(), query.material.end(), material.begin());
+    DoubleMaterial material = double_material(query);
     DoubleDirection view = {query.view[0], query.view[1], query.view[2]};
     DoubleDirection light = {query.light[0], query.light[1], query.light[2]};
+    const PreparedFieldStep prepared{input.index / 3, input.index % 3, step};
     switch (input.kind)
     {
     case CheckedInput::Kind::material: material[input.index] += step; break;
     case CheckedInput::Kind::view: view[input.index] += step; break;
     case CheckedInput::Kind::light: light[input.index] += step; break;
+    case CheckedInput::Kind::prepared: break;
     }
-    const DoubleValue value = double_query_value(material, view, light);
+    const DoubleValue value =
+        double_query_value(material, view, light, input.kind == CheckedInput::Kind::prepared ? &prepared : nullptr);
     double sum = 0.0;
     for (std::size_t index = 0; index < value.size(); ++index)
     {
@@ -356,8 +371,9 @@ double derivative_of(const host::gradients::QueryGradient& gradient, const Check
     case CheckedInput::Kind::material: return gradient.material[input.index];
     case CheckedInput::Kind::view: return gradient.view[input.index];
     case CheckedInput::Kind::light: return gradient.light[input.index];
+    case CheckedInput::Kind::prepared: break;
     }
-    return 0.0;
+    throw std::invalid_argument("a query's gradient has no prepared field (the GPU kernel's input): " + input.name);
 }
 
 Comparison compare_with_differences(const GradientQuery& query, const ValueWeights& scalar, const CheckedInput& input,

@@ -37,7 +37,8 @@ struct CheckedInput
     {
         material,
         view,
-        light
+        light,
+        prepared  // a channel of a prepared field between prepare and eval (index: field * 3 + channel)
     };
     Kind kind = Kind::material;
     std::size_t index = 0;  // slot or component

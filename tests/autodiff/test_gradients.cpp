@@ -283,6 +283,7 @@ TEST(Gradients, ForwardModeMatchesReverseMode)
             case CheckedInput::Kind::material: material_tangent[inputs[k].index] = component; break;
             case CheckedInput::Kind::view: view_tangent[inputs[k].index] = component; break;
             case CheckedInput::Kind::light: light_tangent[inputs[k].index] = component; break;
+            case CheckedInput::Kind::prepared: break;  // checked_inputs() has none: the GPU kernel's
             }
         }
         ValueRecord forward{};
