@@ -136,10 +136,12 @@ OPENPBR_FUNC vec3 openpbr_dispersive_ior(float ior_d, float abbe_number, float d
     const float inverse_f2 = 1.0f / (486.1f * 486.1f);
     const float inverse_c2 = 1.0f / (656.3f * 656.3f);
     // The differentiable build forms 1 / V_d = scale / abbe (the same value), whose derivative is
-    // finite at scale 0 where abbe / scale's is not.
+    // finite at scale 0 where abbe / scale's is not; at scale 1 and abbe OPENPBR_ABBE_MIN it meets
+    // its cap, where the derivative is the one from inside the ranges (min's would be half).
     const float b =
         OPENPBR_AUTODIFF != 0
-            ? (ior_d - 1.0f) * min(dispersion_scale / abbe_number, 1.0f / OPENPBR_ABBE_MIN) / (inverse_f2 - inverse_c2)
+            ? (ior_d - 1.0f) * openpbr_min_first_at_tie(dispersion_scale / abbe_number, 1.0f / OPENPBR_ABBE_MIN) /
+                  (inverse_f2 - inverse_c2)
             : (ior_d - 1.0f) / (max(abbe_number / dispersion_scale, OPENPBR_ABBE_MIN) * (inverse_f2 - inverse_c2));
     const float a = ior_d - b / (587.6f * 587.6f);
     // NaN or infinite wavelengths (caller input) map into the range too: NaN to 300 nm, so the

@@ -450,7 +450,9 @@ OPENPBR_FUNC vec2 openpbr_lut_view_coordinates(float mu, float alpha, float eta,
 OPENPBR_FUNC float openpbr_lut_eta_node(float eta)
 {
     const float y = (eta - 1.0f) / (eta + 1.0f);
-    const float s = min(sqrt(2.0f * abs(y)), 1.0f);
+    // At the range ends (eta = 3 and 1/3) s meets its cap: the derivative there is the one from
+    // inside the range (min's at a tie would be half of it).
+    const float s = openpbr_min_first_at_tie(sqrt(2.0f * abs(y)), 1.0f);
     const float knee = OPENPBR_LUT_ETA_KNEE;
     // (not "linear": an HLSL keyword)
     const float slope = OPENPBR_LUT_ETA_LINEAR_WEIGHT;

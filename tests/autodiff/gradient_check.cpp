@@ -260,6 +260,12 @@ bool documented_singular_point(const GradientQuery& query, const CheckedInput& i
            glm::dot(view, inputs.geometry_basis.normal) < 0.0f;
 }
 
+bool documented_unbounded_point(const GradientQuery& query, const CheckedInput& input)
+{
+    const double x = input_value(query, input);
+    return input.kind == CheckedInput::Kind::material && (x == input.low || x == input.high);
+}
+
 std::vector<GradientQuery> special_point_queries()
 {
     using Setter = void (*)(OpenPBR_ResolvedInputs&);
@@ -376,15 +382,91 @@ double derivative_of(const host::gradients::QueryGradient& gradient, const Check
     throw std::invalid_argument("a query's gradient has no prepared field (the GPU kernel's input): " + input.name);
 }
 
+namespace {
+
+// What the one-sided differences on one side of a point say about the derivative there.
+struct SideEstimate
+{
+    bool usable = false;     // the side lies inside the parameter's range
+    bool estimated = false;  // `derivative` is the side's one-sided derivative
+    bool unbounded = false;  // the differences grow like step^(-1/2): an infinite one-sided derivative
+    double outer = 0.0;      // the difference at the longest step (central differences use it)
+    double derivative = 0.0;
+};
+
+// One side's differences at steps h, h/16 and, where those two disagree, h/256 (sign -1: the
+// left side), read in turn as:
+// - smooth: the differences at h and h/16 agree (the side's derivative is the one at h/16);
+// - a kink within the step: those at h/16 and h/256 agree (the step h crossed it; e.g. a
+//   clamp 1e-7 away from the point);
+// - curvature over a small derivative: the differences' error is linear in the step, so each
+//   sixteenth of the step takes a sixteenth off it, and the extrapolation to step 0
+//   (Richardson) is the derivative: a value at a minimum, e.g. 0 at index matching, whose
+//   derivative is 0 where the curvature times 1e-6 exceeds the absolute tolerance;
+// - unbounded: each sixteenth of the step multiplies the difference by about 4 (3.5 to 4.5),
+//   i.e. it goes like step^(-1/2), a square root at the point (every lobe on at colour 0: the
+//   ratios of the differences at h/16 and h measured 4.02 to 4.41, a term linear in the step
+//   moving the last);
+// - otherwise a jump (no estimate).
+// Only the first reading for a direction component (`refine` false): the critical angles and
+// the film estimate's switches it crosses lie within float rounding of the point (~1e-7), so the
+// float32 gradient code may sit on the other side of them than the double build (4 light and
+// view derivatives of the stability corpus, e.g. d pdf / d light.x of rough glass of IOR 1.01 at
+// its critical angle: 0 against -0.24 at the step of 1e-6/256).
+template <typename Scalar, typename Allowed>
+SideEstimate side_estimate(const Scalar& scalar_at, double value, double step, double sign, bool usable, bool refine,
+                           const Allowed& allowed)
+{
+    SideEstimate side;
+    side.usable = usable;
+    if (!usable)
+    {
+        return side;
+    }
+    auto difference = [&](double h) { return sign * (scalar_at(sign * h) - value) / h; };
+    side.outer = difference(step);
+    const double middle = difference(step / 16.0);
+    if (std::fabs(side.outer - middle) <= allowed(middle))
+    {
+        side.estimated = true;
+        side.derivative = middle;
+        return side;
+    }
+    if (!refine)
+    {
+        return side;
+    }
+    const double inner = difference(step / 256.0);
+    if (std::fabs(middle - inner) <= allowed(inner))
+    {
+        side.estimated = true;
+        side.derivative = inner;
+        return side;
+    }
+    const double extrapolated = inner - (middle - inner) / 15.0;
+    // The linear model predicts middle - inner = (outer - middle) / 16.
+    if (std::fabs((middle - inner) - (side.outer - middle) / 16.0) <= allowed(extrapolated))
+    {
+        side.estimated = true;
+        side.derivative = extrapolated;
+        return side;
+    }
+    const double growth = middle / side.outer;
+    const double inner_growth = inner / middle;
+    side.unbounded = growth > 3.5 && growth < 4.5 && inner_growth > 3.5 && inner_growth < 4.5;
+    return side;
+}
+
+}  // namespace
+
 Comparison compare_with_differences(const GradientQuery& query, const ValueWeights& scalar, const CheckedInput& input,
                                     double derivative, const Tolerance& tolerance)
 {
     const double x = input_value(query, input);
     // Steps of 1e-6 (relative for inputs above 1): double rounding in the difference is ~1e-10 of
-    // the value, and the second, 16 times smaller step tells a kink within the step from a smooth
-    // point.
+    // the value (at the shortest step, 1e-6/256, ~3e-8), and the shorter steps tell a kink within
+    // the step from a smooth point (side_estimate).
     const double step = 1e-6 * std::max(1.0, std::fabs(x));
-    const double short_step = step / 16.0;
     // A side is usable unless stepping to it leaves the parameter's range (the contract's clamp):
     // at a range end the derivative is the one-sided one from inside.
     const bool left_usable = !(x >= input.low && x - step < input.low);
@@ -393,49 +475,41 @@ Comparison compare_with_differences(const GradientQuery& query, const ValueWeigh
     const double scale = std::max(std::fabs(value), tolerance.scale_floor);
     auto allowed = [&](double reference) { return tolerance.relative * std::fabs(reference) + tolerance.absolute * scale; };
     auto within = [&](double reference) { return std::fabs(derivative - reference) <= allowed(reference); };
+    auto scalar_at = [&](double offset) { return double_scalar(query, scalar, input, offset); };
+    const bool refine = input.kind == CheckedInput::Kind::material;
+    const SideEstimate right = side_estimate(scalar_at, value, step, 1.0, right_usable, refine, allowed);
+    const SideEstimate left = side_estimate(scalar_at, value, step, -1.0, left_usable, refine, allowed);
 
-    double right = 0.0;
-    double right_short = 0.0;
-    bool right_smooth = false;
-    if (right_usable)
-    {
-        right = (double_scalar(query, scalar, input, step) - value) / step;
-        right_short = (double_scalar(query, scalar, input, short_step) - value) / short_step;
-        right_smooth = std::fabs(right - right_short) <= allowed(right_short);
-    }
-    double left = 0.0;
-    double left_short = 0.0;
-    bool left_smooth = false;
-    if (left_usable)
-    {
-        left = (value - double_scalar(query, scalar, input, -step)) / step;
-        left_short = (value - double_scalar(query, scalar, input, -short_step)) / short_step;
-        left_smooth = std::fabs(left - left_short) <= allowed(left_short);
-    }
     Comparison comparison;
-    if (right_smooth && left_smooth && std::fabs(right - left) <= allowed(0.5 * (right + left)))
+    if (right.estimated && left.estimated &&
+        std::fabs(right.derivative - left.derivative) <= allowed(0.5 * (right.derivative + left.derivative)))
     {
-        comparison.reference = 0.5 * (right + left);
+        // Smooth: the central difference where both sides were smooth at the longest step,
+        // otherwise the mean of the sides' estimates.
+        const bool outer_smooth = std::fabs(right.outer - left.outer) <= allowed(0.5 * (right.outer + left.outer));
+        comparison.reference = outer_smooth ? 0.5 * (right.outer + left.outer) : 0.5 * (right.derivative + left.derivative);
         comparison.agreement = within(comparison.reference) ? Agreement::smooth : Agreement::failed;
     }
-    else if (right_smooth && within(right_short))
+    else if (right.estimated && within(right.derivative))
     {
-        comparison.reference = right_short;
+        comparison.reference = right.derivative;
         comparison.agreement = Agreement::one_sided;
     }
-    else if (left_smooth && within(left_short))
+    else if (left.estimated && within(left.derivative))
     {
-        comparison.reference = left_short;
+        comparison.reference = left.derivative;
         comparison.agreement = Agreement::one_sided;
     }
-    else if (!right_smooth && !left_smooth)
+    else if (!right.estimated && !left.estimated)
     {
-        comparison.reference = right_usable ? right_short : left_short;
-        comparison.agreement = Agreement::singular;
+        // Unbounded where every usable side is; a jump otherwise.
+        const bool unbounded = (right.unbounded || !right.usable) && (left.unbounded || !left.usable);
+        comparison.reference = right.usable ? right.outer : left.outer;
+        comparison.agreement = unbounded ? Agreement::unbounded : Agreement::singular;
     }
     else
     {
-        comparison.reference = right_smooth ? right_short : left_short;
+        comparison.reference = right.estimated ? right.derivative : left.derivative;
         comparison.agreement = Agreement::failed;
     }
     comparison.error = std::fabs(derivative - comparison.reference) / std::max(allowed(comparison.reference), 1e-300);

@@ -72,12 +72,18 @@ std::vector<GradientQuery> stability_corpus_queries(const std::string& path);
 // angles, the film estimate's segment switches, a mirror lobe's delta threshold).
 bool documented_singular_point(const GradientQuery& query, const CheckedInput& input);
 
+// Whether an infinite one-sided derivative is of the documented kind (docs/gradients.md, "The
+// domain"): a material input at an end of its range, where the value goes like the square root
+// of the distance to it (e.g. a thin film over a metal of colour 0).
+bool documented_unbounded_point(const GradientQuery& query, const CheckedInput& input);
+
 // The outcome of comparing one derivative with the differences of the double build.
 enum class Agreement
 {
     smooth,     // matched the central difference at a point where both sides agree
     one_sided,  // a kink (or a range end): matched the difference on one side
     singular,   // a jump within the step on both sides: not compared
+    unbounded,  // an infinite one-sided derivative (differences growing like step^(-1/2)): not compared
     failed
 };
 
