@@ -362,8 +362,12 @@ OPENPBR_FUNC float openpbr_ggx_lobe_dielectric_reflection_albedo(float mu, float
 #endif
 // Equal shares of a lobe without a critical cosine (in air or under a coat less dense than the
 // film and the base) that is neither narrow nor wide, cut at table 5's even nodes, e.g. 2 (the
-// default: two film evaluations, three with the tail) or 4 (every-lobe prepare about 5,000
-// instructions more). 1, 2, 4 or 8: each share's quartiles must
+// default: two film evaluations, three with the tail), 1 (one film evaluation fewer: every-lobe
+// prepare 13,494 -> 11,588 instructions; against the dense reference without a critical cosine
+// (benchmarks/film_estimate_dense.cpp, 4,758 stacks) the dielectric's change low by more than
+// 0.01 / 0.005 and high by more than 0.01 in 0 / 5 / 0 -> 20 / 110 / 24 stacks, extremes
+// -0.0058 / +0.0084 -> -0.0176 / +0.0263, the metal off by more than 0.01 in 0 -> 36) or 4
+// (every-lobe prepare about 5,000 instructions more). 1, 2, 4 or 8: each share's quartiles must
 // be even nodes.
 #ifndef OPENPBR_FILM_ESTIMATE_PLAIN_SEGMENTS
 #define OPENPBR_FILM_ESTIMATE_PLAIN_SEGMENTS 2
@@ -373,8 +377,11 @@ OPENPBR_FUNC float openpbr_ggx_lobe_dielectric_reflection_albedo(float mu, float
 // 0.1 down to view cosines of about 0.3, roughness 0.2 down to about 0.7, roughness 0.3 from
 // about 0.9; over the dense reference's 10,980 stacks of roughness 0.1-0.8
 // (docs/thin-film-estimate.md) no case moved past 0.005 on the gain side, and no largest
-// error moved) or 0 (always the two halves). 0.1 let 15 more of those cases underestimate the
-// change by more than 0.005.
+// error moved) or 0 (always the two halves). On benchmarks/film_estimate_dense.cpp's 4,758 stacks
+// without a critical cosine, 0.1 took every-lobe prepare 13,494 -> 12,683 instructions and left
+// the change's counts as they were but put the metal off by more than 0.01 in 10 stacks (largest
+// 0.0121, against 0.0081); 0.2 took it to 11,702 with the change low by more than 0.01 / 0.005
+// and high by more than 0.01 in 7 / 52 / 3 stacks (extremes -0.0159 / +0.0113), the metal 23.
 #ifndef OPENPBR_FILM_ESTIMATE_NARROW_WIDTH
 #define OPENPBR_FILM_ESTIMATE_NARROW_WIDTH 0.05f
 #endif
@@ -415,8 +422,11 @@ OPENPBR_FUNC float openpbr_ggx_lobe_dielectric_reflection_albedo(float mu, float
 // table 5's even node OPENPBR_FILM_ESTIMATE_TAIL_NODE of 32, e.g. 28 (the default: the last
 // eighth; the last sixteenth left 31 cases low by more than 0.005 where the eighth left 38, the
 // last 1/32 54), at views whose cosine is below OPENPBR_FILM_ESTIMATE_TAIL_VIEW, e.g. 0.55 (the
-// default: every-lobe prepare 20,295 instructions; 0.6 cost 20,509
-// with the tail at its mean), 0 (never) or 2 (always: about 24,500). A multiple of 4 (the tail's quartiles are even nodes).
+// default; 0.6 cost 20,509 instructions of every-lobe prepare against 20,295 with the one-lane
+// film and the tail at its mean), 0 (never: every-lobe prepare 13,494 -> 12,821 instructions; the
+// dense reference's stacks without a critical cosine low by more than 0.01 / 0.005 and high by
+// more than 0.01: 0 / 5 / 0 -> 24 / 169 / 25) or 2 (always: about 24,500 with the one-lane film). A multiple of 4 (the
+// tail's quartiles are even nodes).
 #ifndef OPENPBR_FILM_ESTIMATE_TAIL_NODE
 #define OPENPBR_FILM_ESTIMATE_TAIL_NODE 28
 #endif
