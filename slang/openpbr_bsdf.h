@@ -125,6 +125,37 @@ OPENPBR_FUNC float openpbr_average_fresnel(float eta)
     return eta >= 1.0f ? clamped : 1.0f - eta * eta * (1.0f - clamped);
 }
 
+// 1 where a dispersive IOR channel sits at an end of the IOR range and its offset from n_d
+// (b (1/lambda^2 - 1/lambda_d^2), of the sign of (n_d - 1) (1/lambda^2 - 1/lambda_d^2)) points out
+// of the range, e.g. the blue channel of n_d = 3 as the dispersion grows from 0; else 0.
+OPENPBR_FUNC float openpbr_dispersion_leaves_range(float channel, float pushes)
+{
+    return ((channel >= OPENPBR_IOR_MAX && pushes > 0.0f) || (channel <= OPENPBR_IOR_MIN && pushes < 0.0f)) ? 1.0f : 0.0f;
+}
+
+// What a channel at an end of the IOR range whose offset from n_d points out of it loses: that
+// offset's derivative (the offset minus itself detached: 0 in value).
+OPENPBR_FUNC vec3 openpbr_dispersion_leaving(vec3 channels, float b, float ior_d, vec3 lambda)
+{
+    const vec3 direction = vec3(1.0f) / (lambda * lambda) - vec3(1.0f / (587.6f * 587.6f));
+    const vec3 pushes = (ior_d - 1.0f) * direction;
+    const vec3 leaves =
+        vec3(openpbr_dispersion_leaves_range(channels.x, pushes.x), openpbr_dispersion_leaves_range(channels.y, pushes.y),
+             openpbr_dispersion_leaves_range(channels.z, pushes.z));
+    const vec3 offset = b * direction;
+    return leaves * (offset - OPENPBR_DETACH(offset));
+}
+
+// The dispersive channels before the clamp to the IOR range; the differentiable build takes the
+// same values, but a channel at an end of the range whose offset from n_d points out of it has
+// that offset's derivative cut. The clamp holds such a channel at the end as the scale grows, so
+// its one-sided derivative is that of n_d alone, where the clamp at its end would pass the
+// offset's derivative too.
+OPENPBR_FUNC vec3 openpbr_dispersion_inside_range(vec3 channels, float b, float ior_d, vec3 lambda)
+{
+    return OPENPBR_AUTODIFF != 0 ? channels - openpbr_dispersion_leaving(channels, b, ior_d, lambda) : channels;
+}
+
 // Dispersion (spec "Translucent base"): Cauchy n(lambda) = A + B / lambda^2 through n_d at the
 // Fraunhofer d line with Abbe number V_d = abbe / scale (F 486.1 nm, d 587.6 nm, C 656.3 nm).
 OPENPBR_FUNC vec3 openpbr_dispersive_ior(float ior_d, float abbe_number, float dispersion_scale, vec3 wavelengths_nm)
@@ -147,7 +178,8 @@ OPENPBR_FUNC vec3 openpbr_dispersive_ior(float ior_d, float abbe_number, float d
     // NaN or infinite wavelengths (caller input) map into the range too: NaN to 300 nm, so the
     // IOR and every table coordinate derived from it stay finite.
     const vec3 lambda = openpbr_clamp_finite(wavelengths_nm, 300.0f, 1000.0f);
-    return clamp(vec3(a) + b / (lambda * lambda), vec3(OPENPBR_IOR_MIN), vec3(OPENPBR_IOR_MAX));
+    return clamp(openpbr_dispersion_inside_range(vec3(a) + b / (lambda * lambda), b, ior_d, lambda), vec3(OPENPBR_IOR_MIN),
+                 vec3(OPENPBR_IOR_MAX));
 }
 
 // The inputs every prepare step reads: the input contract (docs/api.md "Input contract"), then the

@@ -139,6 +139,22 @@ OPENPBR_FUNC OpenPBR_DiffuseLobe openpbr_diffuse_lobe_prepare(OPENPBR_IN(OpenPBR
     return lobe;
 }
 
+// The differentiable build's blend of the base's diffuse colour `color` (weight `weight`) and the
+// sheet's reflection (`sheet_color`, weight `sheet_weight`), to be used with the weight
+// weight + sheet_weight + 1e-12. The plain blend (w c + s S) / max(w + s, 1e-12) is 0 / 1e-12
+// where both weights are 0 (transmission_weight 1, or subsurface_weight 1 with anisotropy 1),
+// and its reverse pass gives 0 there (weight 0 times the blend's derivative of 1e12) where the
+// one-sided derivative is the lobe at the colour that grows. Here `color` enters once more with
+// weight 1e-12 (a value change of ~1e-13, lost in rounding wherever a weight is above ~1e-5): the
+// lobe's weight times its colour is then w c + s S + 1e-12 c, whose derivative is exact for the
+// single-scattering terms (every lobe at base_diffuse_roughness 0) and for the multiple
+// scattering as the base's weight grows; as the sheet's grows from 0 the multiple scattering's
+// rho_ms(S) is taken to first order about rho_ms(c).
+OPENPBR_FUNC vec3 openpbr_blend_kept_at_zero(vec3 weight, vec3 color, vec3 sheet_weight, vec3 sheet_color)
+{
+    return (weight * color + sheet_weight * sheet_color + 1e-12f * color) / (weight + sheet_weight + 1e-12f);
+}
+
 // OpenPBR 1.1 "Thin-walled case", subsurface: a thin scattering sheet of weight `sheet`, which
 // reflects 1/2 S (1 - g) and transmits 1/2 S (1 + g), S = subsurface_color and
 // g = subsurface_scatter_anisotropy, both diffuse lobes. Returns the transmission (the lobe
@@ -152,9 +168,15 @@ OPENPBR_FUNC OpenPBR_DiffuseLobe openpbr_diffuse_transmission_lobe_prepare(OPENP
                                                                            OPENPBR_OUT(vec3) albedo)
 {
     const float g = inputs.subsurface_scatter_anisotropy;
-    reflection_color = (reflection_weight * reflection_color + sheet * (0.5f * (1.0f - g)) * inputs.subsurface_color) /
-                       max(reflection_weight + sheet * (0.5f * (1.0f - g)), vec3(1e-12f));
-    reflection_weight = reflection_weight + sheet * (0.5f * (1.0f - g));
+    // The differentiable build's blend (openpbr_blend_kept_at_zero) keeps the derivative where
+    // both weights are 0; its weight grows by the same 1e-12.
+    reflection_color = OPENPBR_AUTODIFF != 0
+                           ? openpbr_blend_kept_at_zero(reflection_weight, reflection_color, sheet * (0.5f * (1.0f - g)),
+                                                        inputs.subsurface_color)
+                           : (reflection_weight * reflection_color + sheet * (0.5f * (1.0f - g)) * inputs.subsurface_color) /
+                                 max(reflection_weight + sheet * (0.5f * (1.0f - g)), vec3(1e-12f));
+    reflection_weight = OPENPBR_AUTODIFF != 0 ? reflection_weight + sheet * (0.5f * (1.0f - g)) + 1e-12f
+                                              : reflection_weight + sheet * (0.5f * (1.0f - g));
     const OpenPBR_DiffuseLobe lobe = openpbr_diffuse_lobe_init(sheet * (0.5f * (1.0f + g)), inputs.subsurface_color,
                                                                inputs.base_diffuse_roughness, -1.0f, view);
     albedo = lobe.albedo;
