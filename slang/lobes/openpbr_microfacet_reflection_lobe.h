@@ -205,6 +205,24 @@ struct OpenPBR_GgxLobeAlbedo OPENPBR_DIFFERENTIABLE
     float reflection_scale;
 };
 
+// alpha_view of OpenPBR_GgxLobeAlbedo as the differentiable build computes it: the same value,
+// written with T^2 = (alpha_t^2 + alpha_b^2) / 2 as
+//   alpha_view^2 = T^2 + (1 - mu^2) (cos^2 phi - 1/2) (alpha_t^2 - alpha_b^2),
+// whose second term, 0 at anisotropy 0 exactly, grows with the anisotropy where cos^2 phi > 1/2.
+// The tables' roughness coordinate clamps at alpha 1, which alpha_view meets exactly at
+// roughness 1 and anisotropy 0; there the one-sided derivatives from inside the range differ by
+// input: a lower roughness moves alpha_view below 1 (the tables' slope), a higher anisotropy
+// moves it above (the clamp: 0). So at or above 1 the anisotropic term's derivative is dropped
+// where it grows and T's is kept (the clamp's own derivative passes at 1 and is 0 above).
+OPENPBR_FUNC float openpbr_ggx_view_alpha_differentiable(float table_alpha, vec2 alpha, float mu_squared,
+                                                         float cos_phi_squared)
+{
+    const float isotropic = table_alpha * table_alpha;
+    const float anisotropic = (1.0f - mu_squared) * (cos_phi_squared - 0.5f) * (alpha.x * alpha.x - alpha.y * alpha.y);
+    const bool capped = isotropic + anisotropic >= 1.0f && cos_phi_squared > 0.5f;
+    return sqrt(isotropic + (capped ? OPENPBR_DETACH(anisotropic) : anisotropic));
+}
+
 // Anisotropic lobes (anisotropy > 0) read the 4D table of E(mu, r, a, phi) / E(mu, r);
 // isotropic ones only the cheaper 2D table. roughness and anisotropy are those given to
 // openpbr_ggx_alpha for alpha; view is local (tangent along x).
@@ -226,7 +244,9 @@ OPENPBR_FUNC OpenPBR_GgxLobeAlbedo openpbr_ggx_lobe_albedo(float roughness, floa
         const float projected_alpha_squared =
             alpha.x * alpha.x * cos_phi_squared + alpha.y * alpha.y * (1.0f - cos_phi_squared);
         result.reflection_alpha =
-            sqrt(mu_squared * result.table_alpha * result.table_alpha + (1.0f - mu_squared) * projected_alpha_squared);
+            OPENPBR_AUTODIFF != 0
+                ? openpbr_ggx_view_alpha_differentiable(result.table_alpha, alpha, mu_squared, cos_phi_squared)
+                : sqrt(mu_squared * result.table_alpha * result.table_alpha + (1.0f - mu_squared) * projected_alpha_squared);
         result.reflection_scale = result.albedo / max(openpbr_ggx_albedo(view.z, result.reflection_alpha), 1e-3f);
     }
     return result;
