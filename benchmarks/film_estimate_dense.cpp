@@ -29,6 +29,7 @@
 #include <string>
 #include <vector>
 
+#include "host/studies/film_dense_reference.h"
 #include "slang/openpbr.h"
 
 namespace {
@@ -80,64 +81,16 @@ std::vector<Stack> stacks()
     return result;
 }
 
-struct Bases
+// The stack's filmed bases (a dielectric of IOR 1.5 and the F82 metal) and its dense reference
+// (host/studies/film_dense_reference.h, shared with the accuracy study's film-estimate family).
+host::FilmedBases filmed_bases(const Stack& stack)
 {
-    OpenPBR_Fresnel dielectric;
-    OpenPBR_Fresnel metal;
-};
-
-// The film on a dielectric of IOR 1.5 and on a gold-coloured F82 metal, as openpbr_prepare builds
-// a filmed base's Fresnel factors.
-Bases filmed_bases(const Stack& stack)
-{
-    return {openpbr_add_thin_film(openpbr_make_dielectric_fresnel(1.5f / stack.outside_ior, vec3(1.0f)), 1.0f,
-                                  stack.thickness_um, stack.film_ior, stack.outside_ior),
-            openpbr_add_thin_film(openpbr_make_f82_fresnel(vec3(1.0f, 0.78f, 0.34f), vec3(1.0f), vec3(1.0f)), 1.0f,
-                                  stack.thickness_um, stack.film_ior, stack.outside_ior)};
+    return host::filmed_bases(stack.outside_ior, stack.film_ior, stack.thickness_um, 1.5f);
 }
 
-vec3 view_of(const Stack& stack)
-{
-    return vec3(std::sqrt(std::max(0.0f, 1.0f - stack.view_cosine * stack.view_cosine)), 0.0f, stack.view_cosine);
-}
-
-// The change (0-2) and the metal's factor (3-5) averaged over n x n visible normals.
 std::array<double, 6> dense_average(const Stack& stack, const int n)
 {
-    const Bases bases = filmed_bases(stack);
-    const vec2 alpha = openpbr_ggx_alpha(stack.roughness, 0.0f);
-    const vec3 view = view_of(stack);
-    const float lambda_view = openpbr_ggx_lambda(view, alpha);
-    std::array<double, 6> sum{};
-    double weight_sum = 0.0;
-    for (int i = 0; i < n; ++i)
-    {
-        for (int j = 0; j < n; ++j)
-        {
-            const vec3 microfacet = openpbr_sample_vndf_spherical_cap(view, alpha, vec2((i + 0.5f) / n, (j + 0.5f) / n));
-            const float cosine = dot(view, microfacet);
-            const vec3 light = 2.0f * cosine * microfacet - view;
-            if (light.z <= 0.0f)
-            {
-                continue;
-            }
-            const double weight = (1.0f + lambda_view) / (1.0f + lambda_view + openpbr_ggx_lambda(light, alpha));
-            const vec3 change = openpbr_fresnel_evaluate(bases.dielectric, cosine) -
-                                vec3(openpbr_fresnel_dielectric(cosine, bases.dielectric.eta));
-            const vec3 metal = openpbr_fresnel_evaluate(bases.metal, cosine);
-            for (int c = 0; c < 3; ++c)
-            {
-                sum[std::size_t(c)] += weight * change[c];
-                sum[std::size_t(c) + 3] += weight * metal[c];
-            }
-            weight_sum += weight;
-        }
-    }
-    for (double& value : sum)
-    {
-        value /= std::max(weight_sum, 1e-30);
-    }
-    return sum;
+    return host::dense_film_average(filmed_bases(stack), stack.roughness, stack.view_cosine, n);
 }
 
 std::vector<std::array<double, 6>> reference(const std::vector<Stack>& all, const int n, const std::string& cache)
@@ -225,9 +178,10 @@ int main(int argc, char** argv)
     for (std::size_t k = 0; k < all.size(); ++k)
     {
         const Stack& stack = all[k];
-        const Bases bases = filmed_bases(stack);
-        const OpenPBR_FresnelPair estimate = openpbr_base_film_estimate(
-            bases.dielectric, true, bases.metal, true, view_of(stack), openpbr_ggx_alpha(stack.roughness, 0.0f));
+        const host::FilmedBases bases = filmed_bases(stack);
+        const OpenPBR_FresnelPair estimate =
+            openpbr_base_film_estimate(bases.dielectric, true, bases.metal, true, host::film_view(stack.view_cosine),
+                                       openpbr_ggx_alpha(stack.roughness, 0.0f));
         const bool critical = stack.outside_ior > stack.film_ior || stack.outside_ior > 1.5f;
         Tally& tally = regimes[critical ? 1 : 0];
         ++tally.stacks;

@@ -8,6 +8,7 @@
 
 #include "host/scene/material_packing.h"
 #include "host/studies/accuracy_internal.h"
+#include "host/studies/film_dense_reference.h"
 #include "slang/openpbr.h"
 
 namespace openpbr::host::accuracy {
@@ -347,51 +348,12 @@ std::vector<AccuracyFilm> film_estimate_cases(const bool quick)
     return cases;
 }
 
-// What the estimate approximates: the dielectric's change F_film - F_plain and the metal's filmed
-// factor averaged over the lobe's visible normals (n x n nodes of the spherical-cap sampler),
-// weighted by the reflected fraction G2 / G1 (the dense reference of docs/thin-film-estimate.md).
+// What the estimate approximates (host/studies/film_dense_reference.h): the dense reference of
+// docs/thin-film-estimate.md for this film.
 std::array<double, 6> dense_film_average(const AccuracyFilm& film, const int n)
 {
-    const OpenPBR_Fresnel dielectric =
-        openpbr_add_thin_film(openpbr_make_dielectric_fresnel(film.base_ior / film.outside_ior, glm::vec3(1.0f)), 1.0f,
-                              film.thickness_um, film.film_ior, film.outside_ior);
-    const OpenPBR_Fresnel metal =
-        openpbr_add_thin_film(openpbr_make_f82_fresnel(glm::vec3(1.0f, 0.78f, 0.34f), glm::vec3(1.0f), glm::vec3(1.0f)),
-                              1.0f, film.thickness_um, film.film_ior, film.outside_ior);
-    const glm::vec2 alpha = openpbr_ggx_alpha(film.roughness, 0.0f);
-    const glm::vec3 view(std::sqrt(1.0f - film.view_cosine * film.view_cosine), 0.0f, film.view_cosine);
-    const float lambda_view = openpbr_ggx_lambda(view, alpha);
-    std::array<double, 6> sum{};
-    double weight_sum = 0.0;
-    for (int i = 0; i < n; ++i)
-    {
-        for (int j = 0; j < n; ++j)
-        {
-            const glm::vec3 microfacet =
-                openpbr_sample_vndf_spherical_cap(view, alpha, glm::vec2((i + 0.5f) / n, (j + 0.5f) / n));
-            const float cosine = glm::dot(view, microfacet);
-            const glm::vec3 light = 2.0f * cosine * microfacet - view;
-            if (light.z <= 0.0f)
-            {
-                continue;
-            }
-            const double weight = (1.0f + lambda_view) / (1.0f + lambda_view + openpbr_ggx_lambda(light, alpha));
-            const glm::vec3 change =
-                openpbr_fresnel_evaluate(dielectric, cosine) - glm::vec3(openpbr_fresnel_dielectric(cosine, dielectric.eta));
-            const glm::vec3 filmed_metal = openpbr_fresnel_evaluate(metal, cosine);
-            for (int c = 0; c < 3; ++c)
-            {
-                sum[std::size_t(c)] += weight * change[c];
-                sum[std::size_t(c) + 3] += weight * filmed_metal[c];
-            }
-            weight_sum += weight;
-        }
-    }
-    for (double& value : sum)
-    {
-        value /= std::max(weight_sum, 1e-30);
-    }
-    return sum;
+    return host::dense_film_average(host::filmed_bases(film.outside_ior, film.film_ior, film.thickness_um, film.base_ior),
+                                    film.roughness, film.view_cosine, n);
 }
 
 // Largest deviation from 1 of any channel's albedo over the film stacks at view cos 1, 0.5, 0.1.
