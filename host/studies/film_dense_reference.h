@@ -45,8 +45,8 @@ inline glm::vec3 film_view(const float view_cosine)
 
 // The dielectric's change (0-2) and the metal's factor (3-5) averaged over n x n visible normals of
 // the isotropic GGX lobe of this roughness, e.g. n = 128 (converged: 256 gives the same counts).
-inline std::array<double, 6> dense_film_average(const FilmedBases& bases, const float roughness,
-                                                const float view_cosine, const int n)
+inline std::array<double, 6> dense_film_average(const FilmedBases& bases, const float roughness, const float view_cosine,
+                                                const int n)
 {
     const glm::vec2 alpha = openpbr_ggx_alpha(roughness, 0.0f);
     const glm::vec3 view = film_view(view_cosine);

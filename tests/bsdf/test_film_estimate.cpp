@@ -13,12 +13,14 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include "host/studies/film_dense_reference.h"
 #include "slang/openpbr.h"
 
 namespace {
@@ -199,55 +201,12 @@ std::vector<EstimateCase> estimate_cases()
     return cases;
 }
 
-struct Lobe
-{
-    OpenPBR_Fresnel dielectric;
-    OpenPBR_Fresnel metal;
-};
+// The film on a dielectric of IOR 1.5 and on the F82 metal, and the dense average over the
+// visible normals of what the estimate approximates (96 x 96 nodes): the study's reference,
+// host/studies/film_dense_reference.h.
+using Lobe = host::FilmedBases;
 
-Lobe make_lobe(const EstimateCase& c)
-{
-    Lobe lobe;
-    lobe.dielectric = openpbr_add_thin_film(openpbr_make_dielectric_fresnel(1.5f / c.outside_ior, glm::vec3(1.0f)), 1.0f,
-                                            c.thickness_um, c.film_ior, c.outside_ior);
-    lobe.metal =
-        openpbr_add_thin_film(openpbr_make_f82_fresnel(glm::vec3(1.0f, 0.78f, 0.34f), glm::vec3(1.0f), glm::vec3(1.0f)),
-                              1.0f, c.thickness_um, c.film_ior, c.outside_ior);
-    return lobe;
-}
-
-// Dense average over the visible normals of what the estimate approximates.
-OpenPBR_FresnelPair dense_average(const Lobe& lobe, glm::vec3 view, glm::vec2 alpha)
-{
-    const int n = 96;
-    const float lambda_view = openpbr_ggx_lambda(view, alpha);
-    glm::dvec3 change(0.0);
-    glm::dvec3 metal(0.0);
-    double weight_sum = 0.0;
-    for (int i = 0; i < n; ++i)
-    {
-        for (int j = 0; j < n; ++j)
-        {
-            const glm::vec3 microfacet =
-                openpbr_sample_vndf_spherical_cap(view, alpha, glm::vec2((i + 0.5f) / n, (j + 0.5f) / n));
-            const float cosine = glm::dot(view, microfacet);
-            const glm::vec3 light = 2.0f * cosine * microfacet - view;
-            if (light.z <= 0.0f)
-            {
-                continue;
-            }
-            const double weight = (1.0f + lambda_view) / (1.0f + lambda_view + openpbr_ggx_lambda(light, alpha));
-            change += weight * glm::dvec3(openpbr_fresnel_evaluate(lobe.dielectric, cosine) -
-                                          glm::vec3(openpbr_fresnel_dielectric(cosine, lobe.dielectric.eta)));
-            metal += weight * glm::dvec3(openpbr_fresnel_evaluate(lobe.metal, cosine));
-            weight_sum += weight;
-        }
-    }
-    OpenPBR_FresnelPair pair;
-    pair.first = glm::vec3(change / weight_sum);
-    pair.second = glm::vec3(metal / weight_sum);
-    return pair;
-}
+Lobe make_lobe(const EstimateCase& c) { return host::filmed_bases(c.outside_ior, c.film_ior, c.thickness_um, 1.5f); }
 
 class FilmEstimate : public ::testing::TestWithParam<EstimateCase>
 {
@@ -259,15 +218,17 @@ TEST_P(FilmEstimate, FollowsTheDenseLobeAverage)
     SCOPED_TRACE(c.name);
     const Lobe lobe = make_lobe(c);
     const glm::vec2 alpha = openpbr_ggx_alpha(c.roughness, 0.0f);
-    const glm::vec3 view(std::sqrt(1.0f - c.view_cosine * c.view_cosine), 0.0f, c.view_cosine);
-    const OpenPBR_FresnelPair reference = dense_average(lobe, view, alpha);
+    const glm::vec3 view = host::film_view(c.view_cosine);
+    const std::array<double, 6> dense = host::dense_film_average(lobe, c.roughness, c.view_cosine, 96);
+    const glm::dvec3 reference_change(dense[0], dense[1], dense[2]);
+    const glm::dvec3 reference_metal(dense[3], dense[4], dense[5]);
     const OpenPBR_FresnelPair estimate = openpbr_base_film_estimate(lobe.dielectric, true, lobe.metal, true, view, alpha);
-    EXPECT_LE(max_abs_difference(glm::dvec3(estimate.first), glm::dvec3(reference.first)), c.change_bound)
+    EXPECT_LE(max_abs_difference(glm::dvec3(estimate.first), reference_change), c.change_bound)
         << "change: estimate " << estimate.first.x << " " << estimate.first.y << " " << estimate.first.z << ", reference "
-        << reference.first.x << " " << reference.first.y << " " << reference.first.z;
-    EXPECT_LE(max_abs_difference(glm::dvec3(estimate.second), glm::dvec3(reference.second)), c.metal_bound)
+        << reference_change.x << " " << reference_change.y << " " << reference_change.z;
+    EXPECT_LE(max_abs_difference(glm::dvec3(estimate.second), reference_metal), c.metal_bound)
         << "metal: estimate " << estimate.second.x << " " << estimate.second.y << " " << estimate.second.z << ", reference "
-        << reference.second.x << " " << reference.second.y << " " << reference.second.z;
+        << reference_metal.x << " " << reference_metal.y << " " << reference_metal.z;
 }
 
 INSTANTIATE_TEST_SUITE_P(Regimes, FilmEstimate, ::testing::ValuesIn(estimate_cases()),
