@@ -317,6 +317,14 @@ OPENPBR_INLINE_FUNC OpenPBR_PreparedBsdf openpbr_prepare_frames(OPENPBR_IN(OpenP
     {
         bsdf.coat_view = openpbr_to_local(bsdf.coat_basis, bsdf.view_world);
         bsdf.coat_view = openpbr_floor_view_cosine(bsdf.coat_view);
+        // A coat whose own frame faces away from the view (its cosine floored to 0, e.g. a coat
+        // on the unperturbed frame over a base seen from below) sees the view at no cosine: its
+        // value stays put as the view moves, and the derivatives of its horizon terms there are
+        // 0 / 0, so the differentiable build cuts them (the plain build has no reverse pass).
+        if (OPENPBR_AUTODIFF != 0 && bsdf.coat_view.z <= 0.0f)
+        {
+            bsdf.coat_view = OPENPBR_DETACH(bsdf.coat_view);
+        }
     }
     bsdf.fuzz_basis = bsdf.basis;
     bsdf.fuzz_view = bsdf.view;

@@ -68,6 +68,9 @@ OPENPBR_FUNC OpenPBR_ResolvedInputs openpbr_apply_input_contract(OPENPBR_IN(Open
     // A coat of weight 0 is never looked at (prepare, eval and sample read its frame only where
     // coat_weight > 0; the fuzz frame blends it in by coat_weight), so it takes the base frame
     // instead of a second re-orthonormalization (a fifth of the default material's prepare).
+    // The differentiable build keeps the coat's own frame at weight 0, so that the derivative
+    // with respect to coat_weight there is that of the coat as it appears (docs/gradients.md,
+    // "Zero weights"; with the base frame instead it was 2-10 times off where the two differ).
     // A coat basis left at its default (zero normal, openpbr_make_default_resolved_inputs)
     // follows geometry_basis (spec "Coat": geometry_coat_normal defaults to the geometry
     // normal), so a caller that sets only geometry_basis gets the same coat frame as one that
@@ -75,7 +78,7 @@ OPENPBR_FUNC OpenPBR_ResolvedInputs openpbr_apply_input_contract(OPENPBR_IN(Open
     const bool coat_basis_set = dot(inputs.geometry_coat_basis.normal, inputs.geometry_coat_basis.normal) > 0.0f;
     const OpenPBR_Basis coat_source_basis = coat_basis_set ? inputs.geometry_coat_basis : inputs.geometry_basis;
     result.geometry_coat_basis =
-        result.coat_weight > 0.0f
+        (OPENPBR_AUTODIFF != 0 || result.coat_weight > 0.0f)
             ? openpbr_rotate_basis(
                   openpbr_make_basis(coat_source_basis.normal, coat_source_basis.tangent, coat_source_basis.bitangent),
                   inputs.coat_anisotropy_rotation)

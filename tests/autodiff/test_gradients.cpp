@@ -62,9 +62,6 @@ const std::vector<OpenPoint> open_points = {
     {"coat_ior_above_base", "transmission_dispersion_scale"},
     {"coat_ior_above_base", "view.x"},
     {"coat_ior_above_base", "view.z"},
-    {"ior_1.01_glass_rough", "light.z"},
-    {"normal_opposite_view", "coat_weight"},
-    {"normal_tilted_view_normal", "coat_weight"},
     // Coat, film and base of one IOR: the film's and the coat's Fresnel kinks meet at index
     // matching, and central differences across them disagree with the one-sided reverse
     // derivative by up to 4 % for coat_ior and coat_weight, and 0.0098 against 6e-5 for
