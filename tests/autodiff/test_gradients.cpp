@@ -30,6 +30,14 @@ using host::gradients::ValueRecord;
 // from inside), the next 0.011; the absolute term covers derivatives that cancel to ~1e-7 of the
 // scalar in float.
 constexpr Tolerance tolerance{2e-3, 2e-5, 1e-6};
+// Where a mirror's thin film sits within float rounding of its critical cosine
+// (at_film_critical_cosine), the float code's cosine lies on the other side of the square-root
+// kink than the double build's (film 1.4 under a coat of 1.6: (n_f cos_f)^2 0 in float,
+// -1.7e-8 in double), which moves its values by up to 1.47e-3 (value_tolerance) and its
+// derivatives with respect to the inputs that do not move the critical cosine by up to 4.0e-3
+// (d pdf / d coat_color.g 1.8824e-4 against 1.8750e-4, measured 2026-12-02): compared relative
+// to 1e-2 there.
+constexpr Tolerance film_critical_tolerance{1e-2, 2e-5, 1e-6};
 // Forward mode against reverse mode, relative to the sum of the terms' magnitudes: measured 5.9e-7
 // at worst (2026-12-02), float rounding of the same terms summed in other orders.
 constexpr double forward_tolerance = 1e-5;
@@ -38,7 +46,8 @@ constexpr double forward_tolerance = 1e-5;
 constexpr double batch_tolerance = 1e-5;
 // The gradient code's float values against the double build, relative (floor 1e-6): measured 1.47e-3
 // at worst (2026-12-02), a thin film seen in the mirror direction at its critical cosine (the
-// stability corpus), where float rounding moves the film estimate's segments; 2e-5 elsewhere.
+// stability corpus), where float rounding puts the view's cosine on the other side of the film's
+// square-root kink (film_critical_tolerance); 2e-5 elsewhere.
 constexpr double value_tolerance = 3e-3;
 
 // Derivatives known to be wrong today, listed so that they are reported (as "open") instead of
@@ -49,12 +58,11 @@ struct OpenPoint
     const char* label;  // the query's label up to the direction, e.g. "ior_1_glass"
     const char* input;  // e.g. "specular_ior"
 };
-// Measured 2026-12-02: 13 pairs, every one at a point the bundled materials' or the stability
+// Measured 2026-12-02: 9 pairs, every one at a point the bundled materials' or the stability
 // corpus's cases place on purpose (docs/gradients.md, "Open points", says what each is):
 // the view under a coat denser than the base and a coat of IOR 1 (kinks
-// within float rounding of the point), a thin film seen by a mirror at its critical cosine, coat
-// weight 0 seen from below the geometric normal, and a pdf of 16 at a critical angle (float
-// cancellation).
+// within float rounding of the point), coat weight 0 seen from below the geometric normal, and
+// a pdf of 16 at a critical angle (float cancellation).
 const std::vector<OpenPoint> open_points = {
     {"coat_ior_1", "coat_ior"},
     {"coat_ior_above_base", "specular_ior"},
@@ -65,11 +73,6 @@ const std::vector<OpenPoint> open_points = {
     {"ior_1.01_glass_rough", "light.z"},
     {"normal_opposite_view", "coat_weight"},
     {"normal_tilted_view_normal", "coat_weight"},
-    // A mirror's thin film at its critical cosine: no derivative with respect to what moves it.
-    {"thin_film_mirror_at_film_critical_cosine", "coat_color.g"},
-    {"thin_film_mirror_at_film_critical_cosine", "coat_ior"},
-    {"thin_film_mirror_at_film_critical_cosine", "coat_weight"},
-    {"thin_film_mirror_at_film_critical_cosine", "thin_film_ior"},
 };
 
 bool is_open_point(const GradientQuery& query, const CheckedInput& input)
@@ -114,7 +117,8 @@ Totals check_reverse(const std::vector<GradientQuery>& queries)
             for (const CheckedInput& input : inputs)
             {
                 const double derivative = derivative_of(gradient, input);
-                const Comparison comparison = compare_with_differences(query, weights, input, derivative, tolerance);
+                const Comparison comparison = compare_with_differences(
+                    query, weights, input, derivative, at_film_critical_cosine(query) ? film_critical_tolerance : tolerance);
                 const std::string where = query.label + " d" + scalar_name + "/d" + input.name;
                 ++totals.checked;
                 if (is_open_point(query, input) &&
@@ -219,6 +223,35 @@ TEST(Gradients, ReverseModeMatchesDifferencesOnTheStabilityCorpus)
     report("stability corpus", totals);
     EXPECT_TRUE(totals.failures.empty());
     EXPECT_TRUE(totals.undocumented_singular.empty());
+}
+
+// The documented point of a mirror's film at its critical cosine holds where the corpus puts the
+// view there (film 1.4 under a coat of 1.6, view cosine 0.484123) and nowhere near it: not with
+// the view's cosine 1e-4 away, nor on a rough base (whose film estimate does not evaluate the film
+// at the view), nor on any other query of the corpora.
+TEST(Gradients, FilmCriticalCosinePointHoldsOnlyAtIt)
+{
+    int at_point = 0;
+    for (const GradientQuery& query : stability_corpus_queries(OPENPBR_STABILITY_CORPUS))
+    {
+        const bool at_critical = at_film_critical_cosine(query);
+        at_point += at_critical ? 1 : 0;
+        EXPECT_EQ(at_critical, query.label.rfind("thin_film_mirror_at_film_critical_cosine ", 0) == 0) << query.label;
+        if (at_critical)
+        {
+            GradientQuery moved = query;
+            moved.view[2] += 1e-4f;
+            EXPECT_FALSE(at_film_critical_cosine(moved));
+            GradientQuery rough = query;
+            rough.inputs.specular_roughness = 0.3f;
+            EXPECT_FALSE(at_film_critical_cosine(rough));
+        }
+    }
+    EXPECT_EQ(at_point, 3);  // the case's three lights
+    for (const GradientQuery& query : lobe_queries())
+    {
+        EXPECT_FALSE(at_film_critical_cosine(query)) << query.label;
+    }
 }
 
 // Forward mode along a tangent over every checked input equals the reverse-mode gradient's dot
