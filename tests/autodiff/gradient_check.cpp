@@ -9,6 +9,7 @@
 #include "host/scene/material_library.h"
 #include "host/scene/material_packing.h"
 #include "host/studies/feature_variants.h"
+#include "slang/math/openpbr_ggx.h"
 #include "slang/openpbr_parameters.h"
 
 namespace openpbr::test {
@@ -250,6 +251,10 @@ bool documented_singular_point(const GradientQuery& query, const CheckedInput& i
     {
         return inputs.specular_weight == 0.0f;
     }
+    if (input.name == "coat_ior" || input.name == "coat_weight" || input.name == "thin_film_ior")
+    {
+        return at_film_critical_cosine(query);
+    }
     const bool entering_input =
         input.kind == CheckedInput::Kind::material &&
         (input.name == "transmission_weight" || input.name == "subsurface_weight" || input.name == "base_metalness");
@@ -258,6 +263,31 @@ bool documented_singular_point(const GradientQuery& query, const CheckedInput& i
     const glm::vec3 view(query.view[0], query.view[1], query.view[2]);
     return entering_input && entering == 0.0f && !inputs.geometry_thin_walled &&
            glm::dot(view, inputs.geometry_basis.normal) < 0.0f;
+}
+
+bool at_film_critical_cosine(const GradientQuery& query)
+{
+    const OpenPBR_ResolvedInputs& inputs = query.inputs;
+    // The film is evaluated at the view's cosine only where the base is a mirror (the film
+    // estimate's at_view case, slang/lobes/openpbr_microfacet_reflection_lobe.h); a rough lobe's
+    // segments do not depend on where the view lies against the critical cosine.
+    const bool mirror =
+        openpbr_ggx_is_delta(openpbr_ggx_alpha(inputs.specular_roughness, inputs.specular_roughness_anisotropy));
+    // The medium above the film: the coat blended by coat_weight, in air (openpbr_prepare_base_layer).
+    const double outside = 1.0 + double(inputs.coat_weight) * (double(inputs.coat_ior) - 1.0);
+    const double film = inputs.thin_film_ior;
+    if (!(inputs.thin_film_weight > 0.0f) || !mirror || !(film < outside))
+    {
+        return false;
+    }
+    const double critical = std::sqrt(1.0 - (film / outside) * (film / outside));
+    const glm::dvec3 view(query.view[0], query.view[1], query.view[2]);
+    const double cosine = glm::dot(view, glm::dvec3(inputs.geometry_basis.normal)) /
+                          (glm::length(view) * glm::length(glm::dvec3(inputs.geometry_basis.normal)));
+    // Within 1e-6: float rounding of the cosine and of the critical cosine is ~3e-8 each (a film of
+    // 1.4 under a coat of 1.6: the float code's critical cosine 0.484122932, the double build's
+    // 0.484122969, the view's 0.484122962), and 1e-6 is the differences' step.
+    return std::fabs(cosine - critical) <= 1e-6;
 }
 
 bool documented_unbounded_point(const GradientQuery& query, const CheckedInput& input)

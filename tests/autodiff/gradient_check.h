@@ -69,8 +69,17 @@ std::vector<GradientQuery> stability_corpus_queries(const std::string& path);
 // of an opaque material and the inside of a translucent one where the entering weight
 // (1 - metalness)(T + (1 - T) S) reaches 0, for a view below the surface; specular_weight 0,
 // where the modulated IOR moves like sqrt(specular_weight); and any direction component (critical
-// angles, the film estimate's segment switches, a mirror lobe's delta threshold).
+// angles, the film estimate's segment switches, a mirror lobe's delta threshold); and the inputs
+// that move the film's critical cosine where a mirror's film sits at it (at_film_critical_cosine).
 bool documented_singular_point(const GradientQuery& query, const CheckedInput& input);
+
+// Whether the query's base is a mirror whose thin film, evaluated at the view's cosine, sits
+// within float rounding of the film's critical cosine sqrt(1 - (n_f / n_o)^2) (n_o the coat's
+// IOR blended by coat_weight, n_f thin_film_ior): there the film's reflectance goes like the
+// square root of the distance to it (docs/gradients.md, "Jumps"), so the inputs that move the
+// critical cosine (coat_ior, coat_weight, thin_film_ior) have no derivative, and float rounding
+// of the cosine moves the float code's values (film_critical_tolerance in test_gradients.cpp).
+bool at_film_critical_cosine(const GradientQuery& query);
 
 // Whether an infinite one-sided derivative is of the documented kind (docs/gradients.md, "The
 // domain"): a material input at an end of its range, where the value goes like the square root

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -30,6 +31,14 @@ using host::gradients::ValueRecord;
 // from inside), the next 0.011; the absolute term covers derivatives that cancel to ~1e-7 of the
 // scalar in float.
 constexpr Tolerance tolerance{2e-3, 2e-5, 1e-6};
+// Where a mirror's thin film sits within float rounding of its critical cosine
+// (at_film_critical_cosine), the float code's cosine lies on the other side of the square-root
+// kink than the double build's (film 1.4 under a coat of 1.6: (n_f cos_f)^2 0 in float,
+// -1.7e-8 in double), which moves its values by up to 1.47e-3 (value_tolerance) and its
+// derivatives with respect to the inputs that do not move the critical cosine by up to 4.0e-3
+// (d pdf / d coat_color.g 1.8824e-4 against 1.8750e-4, measured 2026-12-02): compared relative
+// to 1e-2 there.
+constexpr Tolerance film_critical_tolerance{1e-2, 2e-5, 1e-6};
 // Forward mode against reverse mode, relative to the sum of the terms' magnitudes: measured 5.9e-7
 // at worst (2026-12-02), float rounding of the same terms summed in other orders.
 constexpr double forward_tolerance = 1e-5;
@@ -38,23 +47,22 @@ constexpr double forward_tolerance = 1e-5;
 constexpr double batch_tolerance = 1e-5;
 // The gradient code's float values against the double build, relative (floor 1e-6): measured 1.47e-3
 // at worst (2026-12-02), a thin film seen in the mirror direction at its critical cosine (the
-// stability corpus), where float rounding moves the film estimate's segments; 2e-5 elsewhere.
+// stability corpus), where float rounding puts the view's cosine on the other side of the film's
+// square-root kink (film_critical_tolerance); 2e-5 elsewhere.
 constexpr double value_tolerance = 3e-3;
 
 // Derivatives known to be wrong today, listed so that they are reported (as "open") instead of
 // failing, and so that a new wrong derivative still fails: the query's label and the input's name
-// (docs/gradients.md, "Open points"). An entry that no longer fails is reported as fixed.
+// (docs/gradients.md, "Open points"). An entry that no longer disagrees anywhere fails the
+// stability corpus's test, so the list only shrinks.
 struct OpenPoint
 {
     const char* label;  // the query's label up to the direction, e.g. "ior_1_glass"
     const char* input;  // e.g. "specular_ior"
 };
-// Measured 2026-12-02: 17 pairs, every one at a point the bundled materials' or the stability
-// corpus's cases place on purpose (docs/gradients.md, "Open points", says what each is):
-// the view under a coat denser than the base and a coat of IOR 1 (kinks
-// within float rounding of the point), a thin film index-matched to the coat and base or at its
-// critical cosine, coat weight 0 seen from below the geometric normal, and a pdf of 16 at a
-// critical angle (float cancellation).
+// Measured 2026-12-02: 6 pairs, every one at a point the stability corpus's cases place on
+// purpose (docs/gradients.md, "Open points", says what each is): the view under a coat denser
+// than the base and a coat of IOR 1 (kinks within float rounding of the point).
 const std::vector<OpenPoint> open_points = {
     {"coat_ior_1", "coat_ior"},
     {"coat_ior_above_base", "specular_ior"},
@@ -62,19 +70,20 @@ const std::vector<OpenPoint> open_points = {
     {"coat_ior_above_base", "transmission_dispersion_scale"},
     {"coat_ior_above_base", "view.x"},
     {"coat_ior_above_base", "view.z"},
-    // Coat, film and base of one IOR: the film's and the coat's Fresnel kinks meet at index
-    // matching, and central differences across them disagree with the one-sided reverse
-    // derivative by up to 4 % for coat_ior and coat_weight, and 0.0098 against 6e-5 for
-    // thin_film_ior (2026-12-02).
-    {"thin_film_index_matched_to_coat_and_base", "coat_ior"},
-    {"thin_film_index_matched_to_coat_and_base", "coat_roughness_anisotropy"},
-    {"thin_film_index_matched_to_coat_and_base", "coat_weight"},
-    {"thin_film_index_matched_to_coat_and_base", "thin_film_ior"},
-    {"thin_film_mirror_at_film_critical_cosine", "coat_color.g"},
-    {"thin_film_mirror_at_film_critical_cosine", "coat_ior"},
-    {"thin_film_mirror_at_film_critical_cosine", "coat_weight"},
-    {"thin_film_mirror_at_film_critical_cosine", "thin_film_ior"},
 };
+
+// The open_points entry a query's input matches, "label input" (empty when none).
+std::string open_point_name(const GradientQuery& query, const CheckedInput& input)
+{
+    for (const OpenPoint& point : open_points)
+    {
+        if (query.label.rfind(std::string(point.label) + " ", 0) == 0 && input.name == point.input)
+        {
+            return std::string(point.label) + " " + point.input;
+        }
+    }
+    return {};
+}
 
 bool is_open_point(const GradientQuery& query, const CheckedInput& input)
 {
@@ -91,6 +100,7 @@ bool is_open_point(const GradientQuery& query, const CheckedInput& input)
 struct Totals
 {
     int open = 0;
+    std::set<std::string> open_seen;  // the open_points entries that disagreed, "label input"
     int checked = 0;
     int one_sided = 0;
     int singular = 0;
@@ -118,13 +128,15 @@ Totals check_reverse(const std::vector<GradientQuery>& queries)
             for (const CheckedInput& input : inputs)
             {
                 const double derivative = derivative_of(gradient, input);
-                const Comparison comparison = compare_with_differences(query, weights, input, derivative, tolerance);
+                const Comparison comparison = compare_with_differences(
+                    query, weights, input, derivative, at_film_critical_cosine(query) ? film_critical_tolerance : tolerance);
                 const std::string where = query.label + " d" + scalar_name + "/d" + input.name;
                 ++totals.checked;
                 if (is_open_point(query, input) &&
                     (comparison.agreement == Agreement::failed || comparison.agreement == Agreement::singular))
                 {
                     ++totals.open;
+                    totals.open_seen.insert(open_point_name(query, input));
                     continue;
                 }
                 if (comparison.agreement == Agreement::unbounded)
@@ -223,6 +235,41 @@ TEST(Gradients, ReverseModeMatchesDifferencesOnTheStabilityCorpus)
     report("stability corpus", totals);
     EXPECT_TRUE(totals.failures.empty());
     EXPECT_TRUE(totals.undocumented_singular.empty());
+    // Every listed open point still disagrees somewhere (a fixed one leaves the list).
+    for (const OpenPoint& point : open_points)
+    {
+        EXPECT_EQ(totals.open_seen.count(std::string(point.label) + " " + point.input), 1u)
+            << point.label << " " << point.input << " agrees now: remove it from open_points";
+    }
+}
+
+// The documented point of a mirror's film at its critical cosine holds where the corpus puts the
+// view there (film 1.4 under a coat of 1.6, view cosine 0.484123) and nowhere near it: not with
+// the view's cosine 1e-4 away, nor on a rough base (whose film estimate does not evaluate the film
+// at the view), nor on any other query of the corpora.
+TEST(Gradients, FilmCriticalCosinePointHoldsOnlyAtIt)
+{
+    int at_point = 0;
+    for (const GradientQuery& query : stability_corpus_queries(OPENPBR_STABILITY_CORPUS))
+    {
+        const bool at_critical = at_film_critical_cosine(query);
+        at_point += at_critical ? 1 : 0;
+        EXPECT_EQ(at_critical, query.label.rfind("thin_film_mirror_at_film_critical_cosine ", 0) == 0) << query.label;
+        if (at_critical)
+        {
+            GradientQuery moved = query;
+            moved.view[2] += 1e-4f;
+            EXPECT_FALSE(at_film_critical_cosine(moved));
+            GradientQuery rough = query;
+            rough.inputs.specular_roughness = 0.3f;
+            EXPECT_FALSE(at_film_critical_cosine(rough));
+        }
+    }
+    EXPECT_EQ(at_point, 3);  // the case's three lights
+    for (const GradientQuery& query : lobe_queries())
+    {
+        EXPECT_FALSE(at_film_critical_cosine(query)) << query.label;
+    }
 }
 
 // Forward mode along a tangent over every checked input equals the reverse-mode gradient's dot
