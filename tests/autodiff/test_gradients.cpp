@@ -49,14 +49,12 @@ struct OpenPoint
     const char* label;  // the query's label up to the direction, e.g. "ior_1_glass"
     const char* input;  // e.g. "specular_ior"
 };
-// Measured 2026-12-02: 17 pairs, every one at a point the bundled materials' or the stability
+// Measured 2026-12-02: 16 pairs, every one at a point the bundled materials' or the stability
 // corpus's cases place on purpose (docs/gradients.md, "Open points", says what each is):
-// the view under a coat denser than the base and a coat of IOR 1 (kinks
-// within float rounding of the point), a thin film index-matched to the coat and base or at its
-// critical cosine, coat weight 0 seen from below the geometric normal, and a pdf of 16 at a
-// critical angle (float cancellation).
+// the view under a coat denser than the base (a kink within float rounding of the point), a
+// thin film index-matched to the coat and base or at its critical cosine, coat weight 0 seen
+// from below the geometric normal, and a pdf of 16 at a critical angle (float cancellation).
 const std::vector<OpenPoint> open_points = {
-    {"coat_ior_1", "coat_ior"},
     {"coat_ior_above_base", "specular_ior"},
     {"coat_ior_above_base", "specular_weight"},
     {"coat_ior_above_base", "transmission_dispersion_scale"},
