@@ -117,9 +117,12 @@ OPENPBR_FUNC float openpbr_modulated_ior(float eta, float specular_weight)
 
 // Spec "Coat" darkening: hemispherical average of the dielectric Fresnel factor, the spec's
 // fit for eta in [1, 3] and the reciprocity relation E_F(eta) = 1 - eta^2 (1 - E_F(1/eta)).
+// At eta = 1 (a coat of the exterior's IOR) the two arguments of the max meet: the derivative
+// is eta's, the side the branch below takes there (max's at a tie would be half of each, and
+// 1/eta's slope cancels eta's: 0).
 OPENPBR_FUNC float openpbr_average_fresnel(float eta)
 {
-    const float e = max(eta, 1.0f / max(eta, 1e-3f));
+    const float e = openpbr_max_first_at_tie(eta, 1.0f / max(eta, 1e-3f));
     const float average = log((10893.0f * e - 1438.2f) / (-774.4f * e * e + 10212.0f * e + 1.0f));
     const float clamped = clamp(average, 0.0f, 1.0f);
     return eta >= 1.0f ? clamped : 1.0f - eta * eta * (1.0f - clamped);

@@ -68,9 +68,10 @@ std::vector<GradientQuery> stability_corpus_queries(const std::string& path);
 // the documented singular points (docs/gradients.md, "The domain"): the switch between the back
 // of an opaque material and the inside of a translucent one where the entering weight
 // (1 - metalness)(T + (1 - T) S) reaches 0, for a view below the surface; specular_weight 0,
-// where the modulated IOR moves like sqrt(specular_weight); and any direction component (critical
-// angles, the film estimate's segment switches, a mirror lobe's delta threshold); and the inputs
-// that move the film's critical cosine where a mirror's film sits at it (at_film_critical_cosine).
+// where the modulated IOR moves like sqrt(specular_weight); any direction component (critical
+// angles, the film estimate's segment switches, a mirror lobe's delta threshold); the inputs that
+// move the film's critical cosine where a mirror's film sits at it (at_film_critical_cosine); and
+// a view within float rounding of a table's critical-cosine kink (documented_rounding_kink).
 bool documented_singular_point(const GradientQuery& query, const CheckedInput& input);
 
 // Whether the query's base is a mirror whose thin film, evaluated at the view's cosine, sits
@@ -86,13 +87,24 @@ bool at_film_critical_cosine(const GradientQuery& query);
 // of the distance to it (e.g. a thin film over a metal of colour 0).
 bool documented_unbounded_point(const GradientQuery& query, const CheckedInput& input);
 
+// Whether the query's view lies within float rounding of a kink that a 3D table look-up of the
+// base has at its view cosine (docs/gradients.md, "The domain"): the view cosine of the base's
+// frame within 2.4e-7 (4 float ulps of a cosine near 1) of the critical cosine of one of the
+// base's relative IORs (per channel), where the tables' view axis changes its slope and has a
+// node (openpbr_lut_plain_view_coordinate, openpbr_lut_view_coordinate). The float gradient
+// code and the double build may round to different sides of it.
+bool documented_rounding_kink(const GradientQuery& query);
+
 // The outcome of comparing one derivative with the differences of the double build.
 enum class Agreement
 {
-    smooth,     // matched the central difference at a point where both sides agree
-    one_sided,  // a kink (or a range end): matched the difference on one side
-    singular,   // a jump within the step on both sides: not compared
-    unbounded,  // an infinite one-sided derivative (differences growing like step^(-1/2)): not compared
+    smooth,       // matched the central difference at a point where both sides agree
+    one_sided,    // a kink (or a range end): matched the difference on one side
+    across_kink,  // a kink within float rounding of the point (documented_rounding_kink): matched
+                  // the chord beyond it on one side
+    singular,     // a jump within the step on both sides, or a kink within float rounding of the point
+                  // whose far side no chord reaches: not compared
+    unbounded,    // an infinite one-sided derivative (differences growing like step^(-1/2)): not compared
     failed
 };
 
