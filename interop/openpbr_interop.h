@@ -161,7 +161,9 @@
 
 // Declaration prefix of a part of a larger function, split out for reading and called once, e.g.
 // OPENPBR_INLINE_FUNC void openpbr_clear_lobes(...): forced inline where a compiler would keep it
-// out of line (the C++ and CUDA backends); elsewhere OPENPBR_FUNC (GPU compilers inline every call).
+// out of line (the C++ and CUDA backends) and in Slang's plain build (whose SPIR-V would keep each
+// part a function of its own: the conformance kernel 231,912 bytes against 225,868, 2026-12-02);
+// elsewhere OPENPBR_FUNC (GPU compilers inline every call).
 #ifndef OPENPBR_INLINE_FUNC
 #define OPENPBR_INLINE_FUNC OPENPBR_FUNC
 #endif

@@ -38,6 +38,9 @@
 #endif
 #else
 #define OPENPBR_FUNC
+// A part of prepare, inlined where it is called (interop/openpbr_interop.h); the differentiable
+// build keeps the parts functions, each with its derivative.
+#define OPENPBR_INLINE_FUNC [ForceInline]
 #endif
 #define OPENPBR_IN(type) in type
 #define OPENPBR_INOUT(type) inout type

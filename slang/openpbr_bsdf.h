@@ -156,7 +156,7 @@ OPENPBR_FUNC vec3 openpbr_dispersion_leaving(vec3 channels, float b, float ior_d
 // offset's derivative too.
 OPENPBR_FUNC vec3 openpbr_dispersion_inside_range(vec3 channels, float b, float ior_d, vec3 lambda)
 {
-    return OPENPBR_AUTODIFF != 0 ? channels - openpbr_dispersion_leaving(channels, b, ior_d, lambda) : channels;
+    return channels - openpbr_dispersion_leaving(channels, b, ior_d, lambda);
 }
 
 // Dispersion (spec "Translucent base"): Cauchy n(lambda) = A + B / lambda^2 through n_d at the
@@ -181,8 +181,10 @@ OPENPBR_FUNC vec3 openpbr_dispersive_ior(float ior_d, float abbe_number, float d
     // NaN or infinite wavelengths (caller input) map into the range too: NaN to 300 nm, so the
     // IOR and every table coordinate derived from it stay finite.
     const vec3 lambda = openpbr_clamp_finite(wavelengths_nm, 300.0f, 1000.0f);
-    return clamp(openpbr_dispersion_inside_range(vec3(a) + b / (lambda * lambda), b, ior_d, lambda), vec3(OPENPBR_IOR_MIN),
-                 vec3(OPENPBR_IOR_MAX));
+    const vec3 channels = vec3(a) + b / (lambda * lambda);
+    // The plain build calls nothing here (Slang's SPIR-V would keep the call).
+    return clamp(OPENPBR_AUTODIFF != 0 ? openpbr_dispersion_inside_range(channels, b, ior_d, lambda) : channels,
+                 vec3(OPENPBR_IOR_MIN), vec3(OPENPBR_IOR_MAX));
 }
 
 // The inputs every prepare step reads: the input contract (docs/api.md "Input contract"), then the
@@ -529,12 +531,13 @@ OPENPBR_INLINE_FUNC OpenPBR_BaseAlbedos openpbr_prepare_base_layer(OPENPBR_IN(Op
     const float diffuse_fraction = (1.0f - translucent) * (1.0f - inputs.subsurface_weight);
     vec3 diffuse_weight = under_specular * (dielectric_weight * diffuse_fraction * inputs.base_weight);
     vec3 diffuse_color = inputs.base_color;
-    OpenPBR_BaseAlbedos albedos;
-    albedos.diffuse = vec3(0.0f);
-    albedos.diffuse_transmission = vec3(0.0f);
-    albedos.transmission = vec3(0.0f);
-    albedos.thin_transmission = vec3(0.0f);
-    albedos.entering_slab = vec3(0.0f);
+    // Plain variables as out arguments (see openpbr_prepare_lobes_of), gathered at the end.
+    vec3 diffuse_albedo = vec3(0.0f);
+    vec3 diffuse_transmission_albedo = vec3(0.0f);
+    vec3 transmission_albedo = vec3(0.0f);
+    vec3 thin_transmission_albedo = vec3(0.0f);
+    vec3 entering_slab_albedo = vec3(0.0f);
+    vec3 metal_albedo = vec3(0.0f);
     const float entering = dielectric_weight * (translucent + subsurface);
     if (thin_walled && OPENPBR_WEIGHT_ACTIVE(entering))
     {
@@ -545,13 +548,13 @@ OPENPBR_INLINE_FUNC OpenPBR_BaseAlbedos openpbr_prepare_base_layer(OPENPBR_IN(Op
         {
             bsdf.diffuse_transmission =
                 openpbr_diffuse_transmission_lobe_prepare(inputs, under_specular * (dielectric_weight * subsurface), view,
-                                                          diffuse_weight, diffuse_color, albedos.diffuse_transmission);
+                                                          diffuse_weight, diffuse_color, diffuse_transmission_albedo);
         }
         if (OPENPBR_WEIGHT_ACTIVE(translucent))
         {
             bsdf.thin_transmission =
                 openpbr_thin_transmission_lobe_prepare(inputs, under_specular * (dielectric_weight * translucent), alpha,
-                                                       base.lobe_albedo, view, albedos.thin_transmission);
+                                                       base.lobe_albedo, view, thin_transmission_albedo);
         }
     }
     else if (OPENPBR_WEIGHT_ACTIVE(entering))
@@ -560,7 +563,7 @@ OPENPBR_INLINE_FUNC OpenPBR_BaseAlbedos openpbr_prepare_base_layer(OPENPBR_IN(Op
         vec3 reflected = vec3(0.0f);
         bsdf.transmission = openpbr_transmission_lobe_prepare(
             inputs, under_specular * dielectric_weight, translucent, subsurface, alpha, base.lobe_albedo.table_alpha,
-            base.eta_channels, view, albedos.transmission, albedos.entering_slab, reflected);
+            base.eta_channels, view, transmission_albedo, entering_slab_albedo, reflected);
         // What the compensation's floor keeps from the refraction reflects instead (see
         // openpbr_transmission_lobe_prepare): the specular lobe's weight grows by that share of
         // its albedo, per channel where it reflects at all (specular_color 0 reflects nothing).
@@ -575,17 +578,23 @@ OPENPBR_INLINE_FUNC OpenPBR_BaseAlbedos openpbr_prepare_base_layer(OPENPBR_IN(Op
     }
     if (OPENPBR_WEIGHT_ACTIVE(max(diffuse_weight.x, max(diffuse_weight.y, diffuse_weight.z))))
     {
-        bsdf.diffuse = openpbr_diffuse_lobe_prepare(inputs, diffuse_weight, diffuse_color, view, albedos.diffuse);
+        bsdf.diffuse = openpbr_diffuse_lobe_prepare(inputs, diffuse_weight, diffuse_color, view, diffuse_albedo);
     }
 
     // Metal (spec "Base Substrate"): F82-tint Fresnel.
-    albedos.metal = vec3(0.0f);
     if (OPENPBR_WEIGHT_ACTIVE(metalness))
     {
-        bsdf.metal = openpbr_metal_lobe_prepare(inputs, alpha, base.lobe_albedo, film_outside_ior, film_averages, view,
-                                                albedos.metal);
+        bsdf.metal =
+            openpbr_metal_lobe_prepare(inputs, alpha, base.lobe_albedo, film_outside_ior, film_averages, view, metal_albedo);
     }
+    OpenPBR_BaseAlbedos albedos;
     albedos.specular = specular_albedo * dielectric_weight;
+    albedos.diffuse = diffuse_albedo;
+    albedos.metal = metal_albedo;
+    albedos.diffuse_transmission = diffuse_transmission_albedo;
+    albedos.transmission = transmission_albedo;
+    albedos.thin_transmission = thin_transmission_albedo;
+    albedos.entering_slab = entering_slab_albedo;
     return albedos;
 }
 
@@ -631,9 +640,10 @@ struct OpenPBR_LayerAlbedos OPENPBR_DIFFERENTIABLE
 // Selection probability proportional to each lobe's estimated albedo (luminance), weighted by
 // the path's channel weights; the probabilities only steer sampling, so estimates need not be
 // exact. Negligible lobes are dropped: probability 0, so eval, pdf and sample skip them alike.
-OPENPBR_FUNC void openpbr_select_lobes(OPENPBR_IN(OpenPBR_ResolvedInputs) inputs, OPENPBR_IN(OpenPBR_LayerAlbedos) layers,
-                                       OPENPBR_IN(OpenPBR_BaseAlbedos) albedos, vec3 path_throughput,
-                                       OPENPBR_INOUT(OpenPBR_PreparedBsdf) bsdf)
+OPENPBR_INLINE_FUNC void openpbr_select_lobes(OPENPBR_IN(OpenPBR_ResolvedInputs) inputs,
+                                              OPENPBR_IN(OpenPBR_LayerAlbedos) layers,
+                                              OPENPBR_IN(OpenPBR_BaseAlbedos) albedos, vec3 path_throughput,
+                                              OPENPBR_INOUT(OpenPBR_PreparedBsdf) bsdf)
 {
     const float metalness = inputs.base_metalness;
     const float coat_weight = inputs.coat_weight;
@@ -723,10 +733,18 @@ OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare_lobes_of(OPENPBR_IN(OpenPBR_Re
         return bsdf;
     }
 
+    // Out arguments are plain variables, not fields of a struct: for a field passed as an out
+    // argument Slang's SPIR-V emits another copy of the callee's whole call tree (with fields:
+    // 66 functions up to four times, the conformance kernel 263,836 bytes; with variables 225,868
+    // against 223,760 before prepare was split, 2026-12-02).
     OpenPBR_LayerAlbedos layers;
-    layers.under_fuzz = openpbr_prepare_fuzz_layer(inputs, opacity, bsdf, layers.fuzz);
+    vec3 fuzz_albedo = vec3(0.0f);
+    layers.under_fuzz = openpbr_prepare_fuzz_layer(inputs, opacity, bsdf, fuzz_albedo);
+    layers.fuzz = fuzz_albedo;
+    vec3 coat_albedo = vec3(0.0f);
     vec3 coat_view_transmittance = vec3(1.0f);
-    openpbr_prepare_coat_layer(inputs, base.coat_eta, layers.under_fuzz, bsdf, layers.coat, coat_view_transmittance);
+    openpbr_prepare_coat_layer(inputs, base.coat_eta, layers.under_fuzz, bsdf, coat_albedo, coat_view_transmittance);
+    layers.coat = coat_albedo;
     const OpenPBR_BaseAlbedos albedos = openpbr_prepare_base_layer(inputs, base, exterior_ior, bsdf);
     const vec3 darkening = openpbr_coat_darkening(inputs, base, albedos, bsdf.coat_view.z, bsdf.coat_inverse_eta_squared);
 
