@@ -735,8 +735,8 @@ OPENPBR_FUNC OpenPBR_PreparedBsdf openpbr_prepare_lobes_of(OPENPBR_IN(OpenPBR_Re
 
     // Out arguments are plain variables, not fields of a struct: for a field passed as an out
     // argument Slang's SPIR-V emits another copy of the callee's whole call tree (with fields:
-    // 66 functions up to four times, the conformance kernel 263,836 bytes; with variables 225,868
-    // against 223,760 before prepare was split, 2026-12-02).
+    // 66 functions up to four times, the conformance kernel 263,836 bytes; with variables
+    // 225,868, 2026-12-02).
     OpenPBR_LayerAlbedos layers;
     vec3 fuzz_albedo = vec3(0.0f);
     layers.under_fuzz = openpbr_prepare_fuzz_layer(inputs, opacity, bsdf, fuzz_albedo);
